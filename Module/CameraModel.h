@@ -1,0 +1,118 @@
+// CatadioptricAR Core: the non-central catadioptric camera model.
+//
+// A perspective camera (intrinsics K, OpenCV lens distortion) looks at a spherical mirror.
+// Conventions (see README "Conventions"):
+//  - camera frame as OpenCV: x right, y down, z forward; the camera centre is the origin;
+//  - pixel (0,0) is the centre of the top-left pixel; K maps camera-frame rays to pixels exactly
+//    as cv::projectPoints does (plus an optional skew term K(0,1));
+//  - the pose is world-to-camera: p_camera = R p_world + t, stored as a 4x4 matrix.
+#ifndef catarCameraModel_h
+#define catarCameraModel_h
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+
+namespace catar
+{
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Mat4 = Eigen::Matrix4d;
+
+/// Pinhole intrinsics and image size in pixels.
+struct Intrinsics
+{
+  double fx = 800.0;
+  double fy = 800.0;
+  double cx = 399.5;
+  double cy = 299.5;
+  double skew = 0.0; ///< K(0,1); 0 for OpenCV-calibrated cameras
+  int width = 800;
+  int height = 600;
+};
+
+/// OpenCV's five-parameter lens distortion (k1, k2, p1, p2, k3).
+struct Distortion
+{
+  double k1 = 0.0;
+  double k2 = 0.0;
+  double p1 = 0.0;
+  double p2 = 0.0;
+  double k3 = 0.0;
+  bool IsZero() const { return k1 == 0 && k2 == 0 && p1 == 0 && p2 == 0 && k3 == 0; }
+};
+
+/// A spherical mirror, given in the camera frame.
+struct SphereMirror
+{
+  Vec3 center = Vec3(0.0, 0.0, 0.2);
+  double radius = 0.05;
+};
+
+/// What became of a point (forward projection) or a pixel (back projection).
+/// Every result carries one; coordinates of a result that is not Valid/OutsideImage are zero,
+/// never NaN.
+enum class ProjectionStatus : std::uint8_t
+{
+  Valid = 0,          ///< reflection found, pixel inside the image
+  OutsideImage = 1,   ///< reflection found, but the pixel lies outside the image
+  InsideMirror = 2,   ///< the point is inside (or on) the mirror sphere
+  HiddenByMirror = 3, ///< the sphere hides the point from every mirror point the camera sees
+  NoReflection = 4,   ///< no usable reflection: grazing/degenerate, behind the camera, or a pixel
+                      ///< whose ray misses the mirror
+  InvalidInput = 5    ///< NaN/Inf input, or an invalid camera
+};
+
+/// A short English name for a status ("valid", "outside-image", ...).
+const char* ToString(ProjectionStatus status);
+
+/// True for the statuses that carry a mirror point and a pixel (Valid, OutsideImage).
+inline bool HasProjection(ProjectionStatus s)
+{
+  return s == ProjectionStatus::Valid || s == ProjectionStatus::OutsideImage;
+}
+
+/// The non-central catadioptric camera: lens, mirror and pose.
+struct CameraModel
+{
+  Intrinsics intrinsics;
+  Distortion distortion;
+  SphereMirror mirror;
+  Mat4 worldToCamera = Mat4::Identity();
+
+  /// Empty when the model is usable; otherwise a sentence that says what is wrong
+  /// (non-positive focal length or radius, camera inside the mirror, non-rigid pose, NaN...).
+  std::string Validate() const;
+
+  /// The 3x3 camera matrix K.
+  Mat3 K() const;
+
+  /// Pixel of a camera-frame direction (z > 0), with distortion: identical to cv::projectPoints.
+  Vec2 DirectionToPixel(const Vec3& direction) const;
+
+  /// Normalised undistorted image coordinates (x/z, y/z) of a pixel: the inverse of
+  /// DirectionToPixel, solved with Newton's method to ~1e-15. Returns false when the inversion does
+  /// not converge (a pixel beyond the distortion model's valid range).
+  bool PixelToNormalized(const Vec2& pixel, Vec2& normalized) const;
+
+  /// Is the pixel inside the image? Pixel (0,0) is the centre of the top-left pixel, so the image
+  /// covers [-0.5, width-0.5) x [-0.5, height-0.5).
+  bool InImage(const Vec2& pixel) const;
+
+  /// World point to camera frame, and the camera centre in world coordinates.
+  Vec3 WorldToCamera(const Vec3& pWorld) const;
+  Vec3 CameraToWorld(const Vec3& pCamera) const;
+  Vec3 CameraToWorldDirection(const Vec3& dCamera) const;
+
+  /// Returns a copy for an image of another size: K is scaled so that the same rays land on the
+  /// same relative positions (pixel centres convention kept).
+  CameraModel Resized(int width, int height) const;
+};
+
+/// Applies OpenCV's distortion to normalised coordinates (x/z, y/z).
+Vec2 Distort(const Distortion& d, const Vec2& xy);
+} // namespace catar
+
+#endif

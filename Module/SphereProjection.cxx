@@ -1,0 +1,532 @@
+#include "SphereProjection.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace catar
+{
+namespace detail
+{
+namespace
+{
+// Real roots of a x^2 + b x + c, numerically stable form.
+int SolveQuadratic(double a, double b, double c, double roots[2])
+{
+  if (a == 0.0)
+  {
+    if (b == 0.0)
+    {
+      return 0;
+    }
+    roots[0] = -c / b;
+    return 1;
+  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0)
+  {
+    // Allow a tiny negative discriminant (rounding) to give a double root.
+    if (disc > -1e-14 * b * b)
+    {
+      roots[0] = -b / (2.0 * a);
+      return 1;
+    }
+    return 0;
+  }
+  const double sq = std::sqrt(disc);
+  const double q = -0.5 * (b + std::copysign(sq, b));
+  if (q == 0.0)
+  {
+    roots[0] = 0.0;
+    roots[1] = 0.0;
+    return 2;
+  }
+  roots[0] = q / a;
+  roots[1] = c / q;
+  return 2;
+}
+
+template <int N>
+double PolyEval(const double (&c)[N], double x, double& derivative)
+{
+  double p = c[0];
+  double dp = 0.0;
+  for (int i = 1; i < N; ++i)
+  {
+    dp = dp * x + p;
+    p = p * x + c[i];
+  }
+  derivative = dp;
+  return p;
+}
+
+template <int N>
+void PolishRoot(const double (&c)[N], double& x, int iterations)
+{
+  for (int it = 0; it < iterations; ++it)
+  {
+    double d = 0.0;
+    const double f = PolyEval(c, x, d);
+    if (d == 0.0 || !std::isfinite(f / d))
+    {
+      return;
+    }
+    const double xn = x - f / d;
+    double dn = 0.0;
+    // Keep the step only if it does not make things worse.
+    if (std::abs(PolyEval(c, xn, dn)) <= std::abs(f))
+    {
+      x = xn;
+    }
+    else
+    {
+      return;
+    }
+  }
+}
+} // namespace
+
+int SolveCubic(double c3, double c2, double c1, double c0, double roots[3])
+{
+  const double scale = std::max({ std::abs(c2), std::abs(c1), std::abs(c0) });
+  if (std::abs(c3) <= 1e-14 * scale || c3 == 0.0)
+  {
+    return SolveQuadratic(c2, c1, c0, roots);
+  }
+  const double b = c2 / c3;
+  const double c = c1 / c3;
+  const double d = c0 / c3;
+  // x = y - b/3: y^3 + p y + q = 0
+  const double p = c - b * b / 3.0;
+  const double q = 2.0 * b * b * b / 27.0 - b * c / 3.0 + d;
+  const double shift = -b / 3.0;
+  const double disc = 0.25 * q * q + p * p * p / 27.0;
+  int n = 0;
+  if (disc > 0.0)
+  {
+    const double u = std::cbrt(-0.5 * q - std::copysign(std::sqrt(disc), q));
+    const double y = (u != 0.0) ? u - p / (3.0 * u) : 0.0;
+    roots[n++] = y + shift;
+  }
+  else if (p == 0.0)
+  {
+    roots[n++] = shift; // triple root
+  }
+  else
+  {
+    const double m = 2.0 * std::sqrt(-p / 3.0);
+    double arg = 3.0 * q / (p * m);
+    arg = std::min(1.0, std::max(-1.0, arg));
+    const double theta = std::acos(arg) / 3.0;
+    constexpr double twoThirdsPi = 2.0943951023931954923;
+    for (int k = 0; k < 3; ++k)
+    {
+      roots[n++] = m * std::cos(theta - twoThirdsPi * k) + shift;
+    }
+  }
+  const double poly[4] = { c3, c2, c1, c0 };
+  for (int i = 0; i < n; ++i)
+  {
+    PolishRoot(poly, roots[i], 2);
+  }
+  return n;
+}
+
+int SolveQuartic(double c4, double c3, double c2, double c1, double c0, double roots[4])
+{
+  const double scale = std::max({ std::abs(c3), std::abs(c2), std::abs(c1), std::abs(c0) });
+  if (std::abs(c4) <= 1e-14 * scale || c4 == 0.0)
+  {
+    return SolveCubic(c3, c2, c1, c0, roots);
+  }
+  const double poly[5] = { c4, c3, c2, c1, c0 };
+  // One root much larger than the others (small leading coefficient) would make Ferrari's shift
+  // -b/4 huge and cancel every digit of the small roots: find that root by Newton from -c3/c4,
+  // deflate it from the constant end (stable for a large root), and solve the cubic left.
+  {
+    const double cauchy =
+      1.0 + std::max({ std::abs(c2 / c3), std::abs(c1 / c3), std::abs(c0 / c3) });
+    double big = -c3 / c4;
+    if (std::isfinite(big) && std::abs(big) > 16.0 * cauchy)
+    {
+      PolishRoot(poly, big, 8);
+      const double d0 = -c0 / big;
+      const double d1 = (d0 - c1) / big;
+      const double d2 = (d1 - c2) / big;
+      const double d3 = (d2 - c3) / big;
+      int n = SolveCubic(d3, d2, d1, d0, roots);
+      for (int i = 0; i < n; ++i)
+      {
+        PolishRoot(poly, roots[i], 3);
+      }
+      roots[n++] = big;
+      return n;
+    }
+  }
+  const double b = c3 / c4;
+  const double c = c2 / c4;
+  const double d = c1 / c4;
+  const double e = c0 / c4;
+  // x = y - b/4: y^4 + p y^2 + q y + r = 0
+  const double b2 = b * b;
+  const double p = c - 0.375 * b2;
+  const double q = 0.125 * b2 * b - 0.5 * b * c + d;
+  const double r = -3.0 / 256.0 * b2 * b2 + 0.0625 * b2 * c - 0.25 * b * d + e;
+  const double shift = -0.25 * b;
+  const double depressedScale = std::max({ std::abs(p) * std::abs(p), std::abs(r), 1e-300 });
+  int n = 0;
+  if (std::abs(q) <= 1e-14 * std::pow(depressedScale, 0.75))
+  {
+    // Biquadratic: z = y^2, z^2 + p z + r = 0
+    double z[2];
+    const int nz = SolveQuadratic(1.0, p, r, z);
+    for (int i = 0; i < nz; ++i)
+    {
+      if (z[i] >= 0.0)
+      {
+        const double y = std::sqrt(z[i]);
+        roots[n++] = y + shift;
+        roots[n++] = -y + shift;
+      }
+    }
+  }
+  else
+  {
+    // Resolvent cubic 8 m^3 + 8 p m^2 + (2 p^2 - 8 r) m - q^2 = 0; take its largest root (> 0).
+    double mr[3];
+    const int nm = SolveCubic(8.0, 8.0 * p, 2.0 * p * p - 8.0 * r, -q * q, mr);
+    double m = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < nm; ++i)
+    {
+      m = std::max(m, mr[i]);
+    }
+    if (!(m > 0.0))
+    {
+      return 0;
+    }
+    const double s = std::sqrt(2.0 * m);
+    const double half = 0.5 * p + m;
+    const double t = q / (2.0 * s);
+    double y[2];
+    int ny = SolveQuadratic(1.0, -s, half + t, y);
+    for (int i = 0; i < ny; ++i)
+    {
+      roots[n++] = y[i] + shift;
+    }
+    ny = SolveQuadratic(1.0, s, half - t, y);
+    for (int i = 0; i < ny; ++i)
+    {
+      roots[n++] = y[i] + shift;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    PolishRoot(poly, roots[i], 3);
+  }
+  return n;
+}
+} // namespace detail
+
+namespace
+{
+constexpr double kOnSurfaceTolerance = 1e-12; // |P - C| / R within 1 +- this: touching the mirror
+constexpr double kGrazingCosine = 1e-9;       // cos(incidence) below this: no usable reflection
+
+// The planar reflection law, see SphereProjection.h. Returns h(t) and its derivative.
+// Camera at (a, 0), point at (bx, by), unit circle at the origin.
+inline double ReflectionLaw(double a, double bx, double by, double t, double& dh)
+{
+  const double c = std::cos(t);
+  const double s = std::sin(t);
+  // Components of A - z and B - z along the normal z and the tangent (-s, c).
+  const double an = a * c - 1.0;
+  const double at = -a * s;
+  const double bn = bx * c + by * s - 1.0;
+  const double bt = by * c - bx * s;
+  dh = -2.0 - an / (an * an + at * at) - bn / (bn * bn + bt * bt);
+  // phi_A + phi_B as the argument of the product of the two complex numbers; both angles are in
+  // (-pi/2, pi/2) inside the bracket, so the sum needs no unwrapping.
+  return std::atan2(an * bt + at * bn, an * bn - at * bt);
+}
+
+struct PlanarSolution
+{
+  double theta = 0.0;
+  bool ok = false;
+};
+
+// Safeguarded Newton on h inside [lo, hi], from the start value t.
+PlanarSolution NewtonInBracket(double a, double bx, double by, double t, double lo, double hi)
+{
+  PlanarSolution sol;
+  t = std::min(hi, std::max(lo, t));
+  for (int it = 0; it < 100; ++it)
+  {
+    double dh = 0.0;
+    const double h = ReflectionLaw(a, bx, by, t, dh);
+    if (h == 0.0)
+    {
+      break;
+    }
+    // h is decreasing: h > 0 means the root lies above t.
+    if (h > 0.0)
+    {
+      lo = t;
+    }
+    else
+    {
+      hi = t;
+    }
+    double tn = t - h / dh;
+    if (!(tn > lo && tn < hi))
+    {
+      tn = 0.5 * (lo + hi);
+    }
+    const double step = std::abs(tn - t);
+    t = tn;
+    if (step <= 4e-16 * (1.0 + std::abs(t)) || hi - lo <= 4e-16 * (1.0 + std::abs(t)))
+    {
+      break;
+    }
+  }
+  sol.theta = t;
+  sol.ok = std::isfinite(t);
+  return sol;
+}
+} // namespace
+
+namespace detail
+{
+bool QuarticReflectionAngle(double a, double bx, double by, double lo, double hi, double& theta)
+{
+  double roots[4];
+  const int n = SolveQuartic(by * (a + 1.0), 2.0 * (2.0 * a * bx + a + bx), -6.0 * a * by,
+    2.0 * (a + bx - 2.0 * a * bx), by * (a - 1.0), roots);
+  const double slack = 1e-7 * (1.0 + hi - lo);
+  double bestAbs = std::numeric_limits<double>::infinity();
+  bool found = false;
+  for (int i = 0; i < n; ++i)
+  {
+    const double t = 2.0 * std::atan(roots[i]);
+    if (!(t >= lo - slack && t <= hi + slack))
+    {
+      continue;
+    }
+    double dh = 0.0;
+    const double tc = std::min(hi, std::max(lo, t));
+    const double h = std::abs(ReflectionLaw(a, bx, by, tc, dh));
+    if (h < bestAbs)
+    {
+      bestAbs = h;
+      theta = tc;
+      found = true;
+    }
+  }
+  return found;
+}
+} // namespace detail
+
+namespace
+{
+PlanarSolution SolvePlanar(
+  SolverType solver, double a, double bx, double by, double beta, double lo, double hi)
+{
+  double start = 0.5 * beta; // far-field guess
+  if (solver == SolverType::Quartic)
+  {
+    // The closed-form root, polished by the same safeguarded Newton (which converges in one or
+    // two steps from it). Should rounding in Ferrari's method leave no root in the bracket, the
+    // polish starts from the far-field guess instead.
+    double theta = 0.0;
+    if (detail::QuarticReflectionAngle(a, bx, by, lo, hi, theta))
+    {
+      start = theta;
+    }
+  }
+  return NewtonInBracket(a, bx, by, start, lo, hi);
+}
+} // namespace
+
+ProjectionStatus SphereReflectionPoint(const Vec3& centre, double radius, const Vec3& point,
+  SolverType solver, Vec3& mirrorPoint)
+{
+  mirrorPoint.setZero();
+  if (!point.allFinite() || !centre.allFinite() || !std::isfinite(radius) || !(radius > 0.0))
+  {
+    return ProjectionStatus::InvalidInput;
+  }
+  const double invR = 1.0 / radius;
+  const Vec3 A = -centre * invR; // camera, sphere-centred, unit radius
+  const Vec3 B = (point - centre) * invR;
+  const double a = A.norm();
+  const double b = B.norm();
+  if (!(a > 1.0) || !std::isfinite(b))
+  {
+    return ProjectionStatus::InvalidInput;
+  }
+  const Vec3 e1 = A / a;
+  if (b < 1.0 - kOnSurfaceTolerance)
+  {
+    return ProjectionStatus::InsideMirror;
+  }
+  if (b <= 1.0 + kOnSurfaceTolerance)
+  {
+    // Touching the mirror: the point is its own reflection when the camera sees it.
+    if (A.dot(B / b) > 1.0)
+    {
+      mirrorPoint = centre + radius * (B / b);
+      return ProjectionStatus::Valid;
+    }
+    return ProjectionStatus::HiddenByMirror;
+  }
+  const double bx = B.dot(e1);
+  Vec3 perp = B - bx * e1;
+  double by = perp.norm();
+  Vec3 e2;
+  if (by > 1e-300 && by > 1e-15 * b)
+  {
+    e2 = perp / by;
+  }
+  else
+  {
+    // On the camera-mirror axis: any plane through the axis will do.
+    by = 0.0;
+    e2 = (std::abs(e1.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(e1).normalized();
+  }
+  const double beta = std::atan2(by, bx); // in [0, pi]
+  const double alphaA = std::acos(1.0 / a);
+  const double alphaB = std::acos(std::min(1.0, 1.0 / b));
+  const double lo = std::max({ -alphaA, beta - alphaB, 0.0 });
+  const double hi = std::min({ alphaA, beta + alphaB, beta });
+  if (!(std::max(-alphaA, beta - alphaB) < std::min(alphaA, beta + alphaB)) || lo > hi)
+  {
+    return ProjectionStatus::HiddenByMirror;
+  }
+  const PlanarSolution sol = SolvePlanar(solver, a, bx, by, beta, lo, hi);
+  if (!sol.ok)
+  {
+    return ProjectionStatus::NoReflection;
+  }
+  const double c = std::cos(sol.theta);
+  const double s = std::sin(sol.theta);
+  // Grazing test: cosine of the incidence angle at the camera side.
+  const double an = a * c - 1.0;
+  const double at = -a * s;
+  const double cosInc = an / std::sqrt(an * an + at * at);
+  if (!(cosInc > kGrazingCosine))
+  {
+    return ProjectionStatus::NoReflection;
+  }
+  mirrorPoint = centre + radius * (c * e1 + s * e2);
+  return ProjectionStatus::Valid;
+}
+
+SphereProjector::SphereProjector(const CameraModel& model)
+  : Model(model)
+{
+  this->Error = model.Validate();
+  this->Valid = this->Error.empty();
+  this->R = model.worldToCamera.topLeftCorner<3, 3>();
+  this->T = model.worldToCamera.topRightCorner<3, 1>();
+}
+
+ProjectedPoint SphereProjector::ProjectCamera(const Vec3& p, SolverType solver) const
+{
+  ProjectedPoint out;
+  if (!this->Valid || !p.allFinite())
+  {
+    out.status = ProjectionStatus::InvalidInput;
+    return out;
+  }
+  Vec3 r;
+  const ProjectionStatus s =
+    SphereReflectionPoint(this->Model.mirror.center, this->Model.mirror.radius, p, solver, r);
+  if (s != ProjectionStatus::Valid)
+  {
+    out.status = s;
+    return out;
+  }
+  // The camera images only mirror points in front of it.
+  if (!(r.z() > 1e-12 * r.norm()))
+  {
+    out.status = ProjectionStatus::NoReflection;
+    return out;
+  }
+  const Vec2 px = this->Model.DirectionToPixel(r);
+  if (!px.allFinite())
+  {
+    out.status = ProjectionStatus::NoReflection;
+    return out;
+  }
+  out.pixel = px;
+  out.mirrorPoint = r;
+  out.pathLength = (p - r).norm();
+  out.status =
+    this->Model.InImage(px) ? ProjectionStatus::Valid : ProjectionStatus::OutsideImage;
+  return out;
+}
+
+ProjectedPoint SphereProjector::ProjectWorld(const Vec3& pWorld, SolverType solver) const
+{
+  if (!pWorld.allFinite())
+  {
+    return ProjectedPoint();
+  }
+  return this->ProjectCamera(this->R * pWorld + this->T, solver);
+}
+
+BackProjectedRay SphereProjector::BackProjectCamera(const Vec2& pixel) const
+{
+  BackProjectedRay out;
+  if (!this->Valid || !pixel.allFinite())
+  {
+    out.status = ProjectionStatus::InvalidInput;
+    return out;
+  }
+  Vec2 xy;
+  if (!this->Model.PixelToNormalized(pixel, xy))
+  {
+    out.status = ProjectionStatus::NoReflection;
+    return out;
+  }
+  const Vec3 d = Vec3(xy.x(), xy.y(), 1.0).normalized();
+  const Vec3& c = this->Model.mirror.center;
+  const double radius = this->Model.mirror.radius;
+  const double dc = d.dot(c);
+  const double c2r2 = c.squaredNorm() - radius * radius;
+  // disc = R^2 - (distance from the centre to the ray)^2, without the cancellation of
+  // (d.c)^2 - |c|^2 + R^2, which would cost digits at every pixel.
+  const double lateral = c.cross(d).norm();
+  const double disc = (radius - lateral) * (radius + lateral);
+  if (!(dc > 0.0) || !(disc >= 0.0))
+  {
+    out.status = ProjectionStatus::NoReflection;
+    return out;
+  }
+  // Nearer intersection, in the cancellation-free form s = (|c|^2 - R^2) / (d.c + sqrt(disc)).
+  const double s = c2r2 / (dc + std::sqrt(disc));
+  const Vec3 r = s * d;
+  const Vec3 n = (r - c) / radius;
+  Vec3 refl = d - 2.0 * d.dot(n) * n;
+  refl.normalize();
+  out.mirrorPoint = r;
+  out.direction = refl;
+  out.status =
+    this->Model.InImage(pixel) ? ProjectionStatus::Valid : ProjectionStatus::OutsideImage;
+  return out;
+}
+
+BackProjectedRay SphereProjector::BackProjectWorld(const Vec2& pixel) const
+{
+  BackProjectedRay out = this->BackProjectCamera(pixel);
+  if (HasProjection(out.status))
+  {
+    out.mirrorPoint = this->Model.CameraToWorld(out.mirrorPoint);
+    out.direction = this->Model.CameraToWorldDirection(out.direction);
+  }
+  return out;
+}
+} // namespace catar

@@ -1,0 +1,98 @@
+// CatadioptricAR Core: forward and back projection through a spherical mirror.
+//
+// Forward projection: given a 3D point P (camera frame), find the mirror point r on the sphere such
+// that the ray from the camera centre to r reflects (angle of incidence = angle of reflection) and
+// passes through P; then r's pixel. The camera centre O, the sphere centre C and P span a plane
+// that contains r (Agrawal et al., ECCV 2010; Alhazen's problem). In that plane, with the origin
+// at C, unit radius, the camera at A = (a, 0) and P at B = (bx, by), by >= 0, the mirror point is
+// z = (cos t, sin t) and the reflection law reads
+//   h(t) = phi_A(t) + phi_B(t) = 0,   phi_X = signed angle from the normal z to X - z,
+// which is strictly decreasing on the arc seen by both A and B, so the physical reflection is
+// unique and bracketed. Two solvers find it:
+//  - Quartic (closed form): with u = tan(t/2) the law becomes the quartic
+//      by(a+1) u^4 + 2(2a bx + a + bx) u^3 - 6 a by u^2 + 2(a + bx - 2a bx) u + by(a-1) = 0,
+//    solved with Ferrari's method; the root inside the bracket is polished with safeguarded
+//    Newton on h (one or two steps).
+//  - Iterative: safeguarded Newton (bisection fallback) on h inside the bracket, started at the
+//    far-field guess t = beta/2.
+#ifndef catarSphereProjection_h
+#define catarSphereProjection_h
+
+#include "CameraModel.h"
+
+namespace catar
+{
+/// Which algorithm finds the reflection point.
+enum class SolverType : int
+{
+  Quartic = 0,  ///< closed-form quartic (Ferrari) + Newton polish
+  Iterative = 1 ///< safeguarded Newton on the planar reflection law
+};
+
+/// Result of a forward projection. Fields other than status are zero unless HasProjection(status).
+struct ProjectedPoint
+{
+  Vec2 pixel = Vec2::Zero();       ///< pixel coordinates (OpenCV convention)
+  Vec3 mirrorPoint = Vec3::Zero(); ///< reflection point on the mirror, camera frame
+  double pathLength = 0.0;         ///< distance from the mirror point to the 3D point
+  ProjectionStatus status = ProjectionStatus::InvalidInput;
+};
+
+/// Result of a back projection: the reflected ray leaves mirrorPoint along direction (unit).
+struct BackProjectedRay
+{
+  Vec3 mirrorPoint = Vec3::Zero();
+  Vec3 direction = Vec3::Zero();
+  ProjectionStatus status = ProjectionStatus::InvalidInput;
+};
+
+/// Reflection point only (camera at the origin, sphere centre/radius in the camera frame).
+/// Returns Valid (and sets mirrorPoint) when a reflection exists; otherwise InsideMirror,
+/// HiddenByMirror, NoReflection or InvalidInput. Never produces NaN.
+ProjectionStatus SphereReflectionPoint(const Vec3& centre, double radius, const Vec3& point,
+  SolverType solver, Vec3& mirrorPoint);
+
+/// Forward and back projection for one camera model, with per-camera constants precomputed.
+/// Thread-safe after construction (all methods const).
+class SphereProjector
+{
+public:
+  explicit SphereProjector(const CameraModel& model);
+
+  /// True when the model passed CameraModel::Validate(); otherwise every result is InvalidInput.
+  bool IsValid() const { return this->Valid; }
+  const std::string& GetError() const { return this->Error; }
+  const CameraModel& GetModel() const { return this->Model; }
+
+  /// Forward projection of a point given in the camera frame / world frame.
+  ProjectedPoint ProjectCamera(const Vec3& pCamera, SolverType solver = SolverType::Quartic) const;
+  ProjectedPoint ProjectWorld(const Vec3& pWorld, SolverType solver = SolverType::Quartic) const;
+
+  /// Back projection of a pixel: the reflected ray in the camera frame / world frame.
+  /// Pixels whose ray misses the mirror give NoReflection; pixels outside the image are still
+  /// back-projected and flagged OutsideImage.
+  BackProjectedRay BackProjectCamera(const Vec2& pixel) const;
+  BackProjectedRay BackProjectWorld(const Vec2& pixel) const;
+
+private:
+  CameraModel Model;
+  bool Valid = false;
+  std::string Error;
+  Mat3 R; // world-to-camera rotation
+  Vec3 T; // world-to-camera translation
+};
+
+namespace detail
+{
+/// Real roots of c4 x^4 + c3 x^3 + c2 x^2 + c1 x + c0 (closed form: Ferrari / Cardano, with
+/// degree reduction when leading coefficients vanish). Returns the number of roots written.
+int SolveQuartic(double c4, double c3, double c2, double c1, double c0, double roots[4]);
+/// Real roots of c3 x^3 + c2 x^2 + c1 x + c0 (Cardano / trigonometric). Returns the count.
+int SolveCubic(double c3, double c2, double c1, double c0, double roots[3]);
+/// The planar problem's closed-form step: the root of the reflection quartic inside [lo, hi]
+/// (camera at (a,0), point at (bx,by), unit circle), before any Newton polish. False if none.
+bool QuarticReflectionAngle(double a, double bx, double by, double lo, double hi, double& theta);
+} // namespace detail
+} // namespace catar
+
+#endif
