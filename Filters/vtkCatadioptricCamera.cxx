@@ -1,0 +1,325 @@
+#include "vtkCatadioptricCamera.h"
+
+#include "CalibrationIO.h"
+#include "CameraModel.h"
+#include "SphereProjection.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkCatadioptricCamera);
+
+namespace
+{
+const char* const kIntrinsicsName = "CameraIntrinsics";
+const char* const kDistortionName = "CameraDistortion";
+const char* const kMirrorName = "MirrorSphere";
+const char* const kPoseName = "WorldToCamera";
+
+void AddArray(vtkFieldData* fd, const char* name, const double* values, int n)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(1);
+  a->SetNumberOfTuples(n);
+  std::copy(values, values + n, a->GetPointer(0));
+  fd->RemoveArray(name);
+  fd->AddArray(a);
+}
+
+bool GetArray(vtkFieldData* fd, const char* name, double* values, int n)
+{
+  vtkDataArray* a = fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(name)) : nullptr;
+  if (!a || a->GetNumberOfValues() != n)
+  {
+    return false;
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    values[i] = a->GetVariantValue(i).ToDouble();
+  }
+  return true;
+}
+} // namespace
+
+vtkCatadioptricCamera::vtkCatadioptricCamera()
+  : WorldToCamera(vtkSmartPointer<vtkMatrix4x4>::New())
+{
+}
+
+vtkCatadioptricCamera::~vtkCatadioptricCamera() = default;
+
+const char* vtkCatadioptricCamera::GetStatusName(int status)
+{
+  if (status < 0 || status > INVALID_INPUT)
+  {
+    return "unknown";
+  }
+  return catar::ToString(static_cast<catar::ProjectionStatus>(status));
+}
+
+void vtkCatadioptricCamera::SetWorldToCamera(vtkMatrix4x4* matrix)
+{
+  if (!matrix)
+  {
+    vtkErrorMacro("SetWorldToCamera: null matrix");
+    return;
+  }
+  this->WorldToCamera->DeepCopy(matrix);
+  this->Modified();
+}
+
+void vtkCatadioptricCamera::SetWorldToCameraElements(const double elements[16])
+{
+  this->WorldToCamera->DeepCopy(elements);
+  this->Modified();
+}
+
+void vtkCatadioptricCamera::GetWorldToCameraElements(double elements[16])
+{
+  vtkMatrix4x4::DeepCopy(elements, this->WorldToCamera);
+}
+
+void vtkCatadioptricCamera::GetCameraPosition(double position[3])
+{
+  const catar::Vec3 p = this->GetModel().CameraToWorld(catar::Vec3::Zero());
+  std::copy(p.data(), p.data() + 3, position);
+}
+
+vtkMTimeType vtkCatadioptricCamera::GetMTime()
+{
+  return std::max(this->Superclass::GetMTime(), this->WorldToCamera->GetMTime());
+}
+
+catar::CameraModel vtkCatadioptricCamera::GetModel()
+{
+  catar::CameraModel m;
+  m.intrinsics.fx = this->FocalLength[0];
+  m.intrinsics.fy = this->FocalLength[1];
+  m.intrinsics.cx = this->PrincipalPoint[0];
+  m.intrinsics.cy = this->PrincipalPoint[1];
+  m.intrinsics.skew = this->Skew;
+  m.intrinsics.width = this->ImageWidth;
+  m.intrinsics.height = this->ImageHeight;
+  m.distortion = catar::Distortion{ this->Distortion[0], this->Distortion[1], this->Distortion[2],
+    this->Distortion[3], this->Distortion[4] };
+  m.mirror.center = catar::Vec3(this->MirrorCenter[0], this->MirrorCenter[1], this->MirrorCenter[2]);
+  m.mirror.radius = this->MirrorRadius;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      m.worldToCamera(r, c) = this->WorldToCamera->GetElement(r, c);
+    }
+  }
+  return m;
+}
+
+void vtkCatadioptricCamera::SetModel(const catar::CameraModel& m)
+{
+  this->FocalLength[0] = m.intrinsics.fx;
+  this->FocalLength[1] = m.intrinsics.fy;
+  this->PrincipalPoint[0] = m.intrinsics.cx;
+  this->PrincipalPoint[1] = m.intrinsics.cy;
+  this->Skew = m.intrinsics.skew;
+  this->ImageWidth = m.intrinsics.width;
+  this->ImageHeight = m.intrinsics.height;
+  const catar::Distortion& d = m.distortion;
+  const double dist[5] = { d.k1, d.k2, d.p1, d.p2, d.k3 };
+  std::copy(dist, dist + 5, this->Distortion);
+  std::copy(m.mirror.center.data(), m.mirror.center.data() + 3, this->MirrorCenter);
+  this->MirrorRadius = m.mirror.radius;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      this->WorldToCamera->SetElement(r, c, m.worldToCamera(r, c));
+    }
+  }
+  this->Modified();
+}
+
+bool vtkCatadioptricCamera::IsValid()
+{
+  this->LastError = this->GetModel().Validate();
+  return this->LastError.empty();
+}
+
+bool vtkCatadioptricCamera::Load(const char* fileName)
+{
+  if (!fileName || !*fileName)
+  {
+    this->LastError = "no calibration file name given";
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+  catar::CameraModel m;
+  std::string error;
+  if (!catar::LoadCalibration(fileName, m, error))
+  {
+    this->LastError = error;
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  this->LastError.clear();
+  this->SetModel(m);
+  return true;
+}
+
+bool vtkCatadioptricCamera::Save(const char* fileName)
+{
+  if (!fileName || !*fileName)
+  {
+    this->LastError = "no calibration file name given";
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+  std::string error;
+  if (!catar::SaveCalibration(fileName, this->GetModel(), error))
+  {
+    this->LastError = error;
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  this->LastError.clear();
+  return true;
+}
+
+int vtkCatadioptricCamera::ProjectWorldPoint(
+  const double point[3], double pixel[2], double mirrorPoint[3])
+{
+  return this->ProjectWorldPoint(point, pixel, mirrorPoint, 0);
+}
+
+int vtkCatadioptricCamera::ProjectWorldPoint(
+  const double point[3], double pixel[2], double mirrorPoint[3], int solver)
+{
+  const catar::SphereProjector proj(this->GetModel());
+  const catar::ProjectedPoint q = proj.ProjectWorld(catar::Vec3(point[0], point[1], point[2]),
+    solver == 1 ? catar::SolverType::Iterative : catar::SolverType::Quartic);
+  pixel[0] = q.pixel.x();
+  pixel[1] = q.pixel.y();
+  std::copy(q.mirrorPoint.data(), q.mirrorPoint.data() + 3, mirrorPoint);
+  return static_cast<int>(q.status);
+}
+
+int vtkCatadioptricCamera::BackProjectPixel(
+  const double pixel[2], double origin[3], double direction[3])
+{
+  const catar::SphereProjector proj(this->GetModel());
+  const catar::BackProjectedRay r = proj.BackProjectWorld(catar::Vec2(pixel[0], pixel[1]));
+  std::copy(r.mirrorPoint.data(), r.mirrorPoint.data() + 3, origin);
+  std::copy(r.direction.data(), r.direction.data() + 3, direction);
+  return static_cast<int>(r.status);
+}
+
+void vtkCatadioptricCamera::WriteToFieldData(vtkFieldData* fd)
+{
+  if (!fd)
+  {
+    return;
+  }
+  const double intr[7] = { this->FocalLength[0], this->FocalLength[1], this->PrincipalPoint[0],
+    this->PrincipalPoint[1], this->Skew, static_cast<double>(this->ImageWidth),
+    static_cast<double>(this->ImageHeight) };
+  AddArray(fd, kIntrinsicsName, intr, 7);
+  AddArray(fd, kDistortionName, this->Distortion, 5);
+  const double mirror[4] = { this->MirrorCenter[0], this->MirrorCenter[1], this->MirrorCenter[2],
+    this->MirrorRadius };
+  AddArray(fd, kMirrorName, mirror, 4);
+  double pose[16];
+  this->GetWorldToCameraElements(pose);
+  AddArray(fd, kPoseName, pose, 16);
+}
+
+bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
+{
+  double intr[7], dist[5], mirror[4], pose[16];
+  if (!GetArray(fd, kIntrinsicsName, intr, 7) || !GetArray(fd, kDistortionName, dist, 5) ||
+    !GetArray(fd, kMirrorName, mirror, 4) || !GetArray(fd, kPoseName, pose, 16))
+  {
+    this->LastError = "field data holds no camera (run vtkCatadioptricProjection first)";
+    return false;
+  }
+  if (intr[5] < 1 || intr[6] < 1 || intr[5] > 100000 || intr[6] > 100000)
+  {
+    this->LastError = "field data camera has an invalid image size";
+    return false;
+  }
+  this->FocalLength[0] = intr[0];
+  this->FocalLength[1] = intr[1];
+  this->PrincipalPoint[0] = intr[2];
+  this->PrincipalPoint[1] = intr[3];
+  this->Skew = intr[4];
+  this->ImageWidth = static_cast<int>(intr[5]);
+  this->ImageHeight = static_cast<int>(intr[6]);
+  std::copy(dist, dist + 5, this->Distortion);
+  std::copy(mirror, mirror + 3, this->MirrorCenter);
+  this->MirrorRadius = mirror[3];
+  this->WorldToCamera->DeepCopy(pose);
+  this->Modified();
+  return this->IsValid();
+}
+
+vtkCatadioptricCamera* vtkCatadioptricCamera::Resolve(vtkCatadioptricCamera* camera,
+  const char* fileName, vtkSmartPointer<vtkCatadioptricCamera>& cache, std::string& cachedName,
+  std::string& error)
+{
+  if (camera)
+  {
+    return camera;
+  }
+  if (!fileName || !*fileName)
+  {
+    error = "No camera: call SetCamera() or set CalibrationFileName.";
+    return nullptr;
+  }
+  if (!cache || cachedName != fileName)
+  {
+    catar::CameraModel model;
+    std::string why;
+    if (!catar::LoadCalibration(fileName, model, why))
+    {
+      error = "Cannot load the calibration: " + why;
+      return nullptr;
+    }
+    vtkNew<vtkCatadioptricCamera> loaded;
+    loaded->SetModel(model);
+    cache = loaded;
+    cachedName = fileName;
+  }
+  return cache;
+}
+
+void vtkCatadioptricCamera::DeepCopy(vtkCatadioptricCamera* other)
+{
+  if (other && other != this)
+  {
+    this->SetModel(other->GetModel());
+  }
+}
+
+void vtkCatadioptricCamera::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ImageSize: " << this->ImageWidth << " x " << this->ImageHeight << "\n";
+  os << indent << "FocalLength: " << this->FocalLength[0] << ", " << this->FocalLength[1] << "\n";
+  os << indent << "PrincipalPoint: " << this->PrincipalPoint[0] << ", " << this->PrincipalPoint[1]
+     << "\n";
+  os << indent << "Skew: " << this->Skew << "\n";
+  os << indent << "Distortion:";
+  for (double d : this->Distortion)
+  {
+    os << " " << d;
+  }
+  os << "\n";
+  os << indent << "MirrorCenter: " << this->MirrorCenter[0] << ", " << this->MirrorCenter[1]
+     << ", " << this->MirrorCenter[2] << "\n";
+  os << indent << "MirrorRadius: " << this->MirrorRadius << "\n";
+  os << indent << "WorldToCamera:\n";
+  this->WorldToCamera->PrintSelf(os, indent.GetNextIndent());
+}

@@ -1,0 +1,176 @@
+/**
+ * @class   vtkCatadioptricCamera
+ * @brief   a non-central catadioptric camera: a perspective camera looking at a spherical mirror
+ *
+ * The camera holds the pinhole intrinsics (focal lengths, principal point, skew, image size),
+ * OpenCV's lens distortion (k1, k2, p1, p2, k3), the spherical mirror (centre in the camera frame,
+ * radius) and the world-to-camera pose. Conventions follow OpenCV: camera frame x right, y down,
+ * z forward; pixel (0,0) is the centre of the top-left pixel. Lengths are in any one unit.
+ *
+ * It loads and saves calibration files (YAML or JSON, see README "Calibration files"), projects
+ * world points through the mirror, back-projects pixels to reflected rays, and writes itself to /
+ * reads itself from field data, which is how it travels down a pipeline.
+ *
+ * Every projection returns a status (see StatusCodes) instead of producing NaNs.
+ */
+#ifndef vtkCatadioptricCamera_h
+#define vtkCatadioptricCamera_h
+
+#include "CatadioptricARFiltersModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for member
+
+#include <string> // for member
+
+class vtkFieldData;
+class vtkMatrix4x4;
+
+namespace catar
+{
+struct CameraModel;
+}
+
+class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricCamera : public vtkObject
+{
+public:
+  static vtkCatadioptricCamera* New();
+  vtkTypeMacro(vtkCatadioptricCamera, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Projection statuses (values of the ProjectionStatus arrays).
+  enum StatusCodes
+  {
+    VALID = 0,            ///< reflection found, pixel inside the image
+    OUTSIDE_IMAGE = 1,    ///< reflection found, pixel outside the image
+    INSIDE_MIRROR = 2,    ///< the point is inside the mirror sphere
+    HIDDEN_BY_MIRROR = 3, ///< the sphere hides the point from all the mirror the camera sees
+    NO_REFLECTION = 4,    ///< grazing, behind the camera, or a pixel whose ray misses the mirror
+    INVALID_INPUT = 5     ///< NaN/Inf input or an invalid camera
+  };
+  /// A short name for a status code ("valid", "inside-mirror", ...).
+  static const char* GetStatusName(int status);
+
+  ///@{
+  /// Image size in pixels.
+  vtkSetClampMacro(ImageWidth, int, 1, 100000);
+  vtkGetMacro(ImageWidth, int);
+  vtkSetClampMacro(ImageHeight, int, 1, 100000);
+  vtkGetMacro(ImageHeight, int);
+  ///@}
+
+  ///@{
+  /// Focal lengths fx, fy in pixels.
+  vtkSetVector2Macro(FocalLength, double);
+  vtkGetVector2Macro(FocalLength, double);
+  ///@}
+
+  ///@{
+  /// Principal point cx, cy in pixels (pixel (0,0) is the centre of the top-left pixel).
+  vtkSetVector2Macro(PrincipalPoint, double);
+  vtkGetVector2Macro(PrincipalPoint, double);
+  ///@}
+
+  ///@{
+  /// Skew, K(0,1). OpenCV calibrations have 0.
+  vtkSetMacro(Skew, double);
+  vtkGetMacro(Skew, double);
+  ///@}
+
+  ///@{
+  /// OpenCV distortion coefficients k1, k2, p1, p2, k3.
+  vtkSetVector5Macro(Distortion, double);
+  vtkGetVector5Macro(Distortion, double);
+  ///@}
+
+  ///@{
+  /// Spherical mirror: centre in the camera frame, and radius.
+  vtkSetVector3Macro(MirrorCenter, double);
+  vtkGetVector3Macro(MirrorCenter, double);
+  vtkSetMacro(MirrorRadius, double);
+  vtkGetMacro(MirrorRadius, double);
+  ///@}
+
+  ///@{
+  /// World-to-camera pose (p_camera = M p_world). The matrix is copied.
+  void SetWorldToCamera(vtkMatrix4x4* matrix);
+  vtkMatrix4x4* GetWorldToCamera() { return this->WorldToCamera; }
+  /// The pose as 16 numbers, row-major (for ParaView and scripts).
+  void SetWorldToCameraElements(const double elements[16]);
+  void GetWorldToCameraElements(double elements[16]);
+  /// Camera centre in world coordinates.
+  void GetCameraPosition(double position[3]);
+  ///@}
+
+  /// True when the parameters describe a usable camera; otherwise GetLastError() says why.
+  bool IsValid();
+
+  /// The last problem met by IsValid, Load or Save ("" if none).
+  const char* GetLastError() { return this->LastError.c_str(); }
+
+  ///@{
+  /// Read / write a calibration file (YAML or JSON by extension). Return false on failure and
+  /// report it through vtkErrorMacro and GetLastError(); a failed Load leaves the camera as it was.
+  bool Load(const char* fileName);
+  bool Save(const char* fileName);
+  ///@}
+
+  ///@{
+  /// Forward projection of a world point. Returns a status code; pixel and mirrorPoint (camera
+  /// frame) are set for VALID and OUTSIDE_IMAGE and zero otherwise. solver: 0 quartic, 1 iterative.
+  int ProjectWorldPoint(const double point[3], double pixel[2], double mirrorPoint[3]);
+  int ProjectWorldPoint(const double point[3], double pixel[2], double mirrorPoint[3], int solver);
+  ///@}
+
+  /// Back projection of a pixel to the reflected ray in world coordinates: it leaves `origin`
+  /// (on the mirror) along the unit vector `direction`. Returns a status code.
+  int BackProjectPixel(const double pixel[2], double origin[3], double direction[3]);
+
+  ///@{
+  /// Store the camera in / restore it from field data (arrays CameraIntrinsics,
+  /// CameraDistortion, MirrorSphere, WorldToCamera). ReadFromFieldData returns false if any is
+  /// missing or malformed.
+  void WriteToFieldData(vtkFieldData* fieldData);
+  bool ReadFromFieldData(vtkFieldData* fieldData);
+  ///@}
+
+  /// Copies all parameters from another camera.
+  void DeepCopy(vtkCatadioptricCamera* other);
+
+  /// The modification time includes the pose matrix.
+  vtkMTimeType GetMTime() override;
+
+#ifndef __VTK_WRAP__
+  /// For filters that take a camera object or a calibration file name: returns `camera` if set,
+  /// else the camera in `cache` loaded from `fileName` (reloaded when the name changes). Returns
+  /// nullptr and says why in `error` when neither gives a camera.
+  static vtkCatadioptricCamera* Resolve(vtkCatadioptricCamera* camera, const char* fileName,
+    vtkSmartPointer<vtkCatadioptricCamera>& cache, std::string& cachedName, std::string& error);
+
+  ///@{
+  /// The model as the Core library sees it (C++ only).
+  catar::CameraModel GetModel();
+  void SetModel(const catar::CameraModel& model);
+  ///@}
+#endif
+
+protected:
+  vtkCatadioptricCamera();
+  ~vtkCatadioptricCamera() override;
+
+  int ImageWidth = 1328;
+  int ImageHeight = 1048;
+  double FocalLength[2] = { 1000.0, 1000.0 };
+  double PrincipalPoint[2] = { 663.5, 523.5 };
+  double Skew = 0.0;
+  double Distortion[5] = { 0, 0, 0, 0, 0 };
+  double MirrorCenter[3] = { 0.0, 0.0, 0.14 };
+  double MirrorRadius = 0.05;
+  vtkSmartPointer<vtkMatrix4x4> WorldToCamera;
+  std::string LastError;
+
+private:
+  vtkCatadioptricCamera(const vtkCatadioptricCamera&) = delete;
+  void operator=(const vtkCatadioptricCamera&) = delete;
+};
+
+#endif

@@ -1,0 +1,257 @@
+#include "vtkCatadioptricProjection.h"
+
+#include "CameraModel.h"
+#include "SphereProjection.h"
+
+#include "vtkCatadioptricCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+
+vtkStandardNewMacro(vtkCatadioptricProjection);
+vtkCxxSetObjectMacro(vtkCatadioptricProjection, Camera, vtkCatadioptricCamera);
+
+namespace
+{
+// Projects the polygons' centroids and decides cell visibility; runs over a range of polygons.
+struct CellWorker
+{
+  const catar::SphereProjector* Projector;
+  catar::SolverType Solver;
+  vtkPoints* Points;
+  const unsigned char* PointVisible;
+  const double* Pixels;
+  double* Depth;
+  unsigned char* Visible;
+  vtkIdType CellOffset; // cell-data index of the first polygon
+  double Width;
+  double Height;
+
+  template <typename CellStateT>
+  void operator()(CellStateT& state, vtkIdType begin, vtkIdType end) const
+  {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      const auto ids = state.GetCellRange(c);
+      const vtkIdType out = this->CellOffset + c;
+      this->Depth[out] = 0.0;
+      this->Visible[out] = 0;
+      const vtkIdType n = static_cast<vtkIdType>(ids.size());
+      if (n < 3)
+      {
+        continue;
+      }
+      catar::Vec3 centroid = catar::Vec3::Zero();
+      bool all = true;
+      double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+      for (const auto id : ids)
+      {
+        if (!this->PointVisible[id])
+        {
+          all = false;
+          break;
+        }
+        double p[3];
+        this->Points->GetPoint(id, p);
+        centroid += catar::Vec3(p[0], p[1], p[2]);
+        const double* px = this->Pixels + 2 * id;
+        xmin = std::min(xmin, px[0]);
+        xmax = std::max(xmax, px[0]);
+        ymin = std::min(ymin, px[1]);
+        ymax = std::max(ymax, px[1]);
+      }
+      if (!all)
+      {
+        continue;
+      }
+      centroid /= static_cast<double>(n);
+      const catar::ProjectedPoint q = this->Projector->ProjectWorld(centroid, this->Solver);
+      if (!catar::HasProjection(q.status))
+      {
+        continue;
+      }
+      this->Depth[out] = q.pathLength;
+      const bool overlapsImage =
+        xmax >= -0.5 && ymax >= -0.5 && xmin < this->Width - 0.5 && ymin < this->Height - 0.5;
+      this->Visible[out] = overlapsImage ? 1 : 0;
+    }
+  }
+};
+
+struct CellDispatch
+{
+  template <typename CellStateT>
+  void operator()(CellStateT& state, const CellWorker& worker) const
+  {
+    vtkSMPTools::For(0, state.GetNumberOfCells(),
+      [&](vtkIdType b, vtkIdType e) { worker(state, b, e); });
+  }
+};
+} // namespace
+
+vtkCatadioptricProjection::vtkCatadioptricProjection() = default;
+
+vtkCatadioptricProjection::~vtkCatadioptricProjection()
+{
+  this->SetCamera(nullptr);
+  this->SetCalibrationFileName(nullptr);
+}
+
+vtkMTimeType vtkCatadioptricProjection::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->Camera)
+  {
+    t = std::max(t, this->Camera->GetMTime());
+  }
+  return t;
+}
+
+vtkCatadioptricCamera* vtkCatadioptricProjection::ResolveCamera()
+{
+  std::string error;
+  vtkCatadioptricCamera* camera = vtkCatadioptricCamera::Resolve(
+    this->Camera, this->CalibrationFileName, this->FileCamera, this->LoadedFileName, error);
+  if (!camera)
+  {
+    vtkErrorMacro(<< error);
+  }
+  return camera;
+}
+
+int vtkCatadioptricProjection::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input and output must be vtkPolyData.");
+    return 0;
+  }
+  vtkCatadioptricCamera* camera = this->ResolveCamera();
+  if (!camera)
+  {
+    return 0;
+  }
+  if (!camera->IsValid())
+  {
+    vtkErrorMacro("Invalid camera: " << camera->GetLastError());
+    return 0;
+  }
+  const catar::SphereProjector projector(camera->GetModel());
+  const catar::SolverType solver =
+    this->Solver == ITERATIVE ? catar::SolverType::Iterative : catar::SolverType::Quartic;
+
+  output->ShallowCopy(input);
+  camera->WriteToFieldData(output->GetFieldData());
+
+  const vtkIdType nPts = input->GetNumberOfPoints();
+  vtkNew<vtkDoubleArray> pixels;
+  pixels->SetName("ImageCoordinates");
+  pixels->SetNumberOfComponents(2);
+  pixels->SetNumberOfTuples(nPts);
+  vtkNew<vtkDoubleArray> mirror;
+  mirror->SetName("MirrorPoint");
+  mirror->SetNumberOfComponents(3);
+  mirror->SetNumberOfTuples(nPts);
+  vtkNew<vtkDoubleArray> path;
+  path->SetName("PathLength");
+  path->SetNumberOfTuples(nPts);
+  vtkNew<vtkUnsignedCharArray> status;
+  status->SetName("ProjectionStatus");
+  status->SetNumberOfTuples(nPts);
+  vtkNew<vtkUnsignedCharArray> pvis;
+  pvis->SetName("Visible");
+  pvis->SetNumberOfTuples(nPts);
+
+  this->UpdateProgress(0.0);
+  if (nPts > 0)
+  {
+    vtkPoints* points = input->GetPoints();
+    double* px = pixels->GetPointer(0);
+    double* mp = mirror->GetPointer(0);
+    double* pl = path->GetPointer(0);
+    unsigned char* st = status->GetPointer(0);
+    unsigned char* vi = pvis->GetPointer(0);
+    vtkSMPTools::For(0, nPts, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        double p[3];
+        points->GetPoint(i, p);
+        const catar::ProjectedPoint q =
+          projector.ProjectWorld(catar::Vec3(p[0], p[1], p[2]), solver);
+        px[2 * i] = q.pixel.x();
+        px[2 * i + 1] = q.pixel.y();
+        mp[3 * i] = q.mirrorPoint.x();
+        mp[3 * i + 1] = q.mirrorPoint.y();
+        mp[3 * i + 2] = q.mirrorPoint.z();
+        pl[i] = q.pathLength;
+        st[i] = static_cast<unsigned char>(q.status);
+        vi[i] = catar::HasProjection(q.status) ? 1 : 0;
+      }
+    });
+  }
+  vtkPointData* pd = output->GetPointData();
+  pd->AddArray(pixels);
+  pd->AddArray(mirror);
+  pd->AddArray(path);
+  pd->AddArray(status);
+  pd->AddArray(pvis);
+  this->UpdateProgress(0.5);
+
+  const vtkIdType nCells = input->GetNumberOfCells();
+  vtkNew<vtkDoubleArray> depth;
+  depth->SetName("CentroidDepth");
+  depth->SetNumberOfTuples(nCells);
+  depth->FillValue(0.0);
+  vtkNew<vtkUnsignedCharArray> cvis;
+  cvis->SetName("Visible");
+  cvis->SetNumberOfTuples(nCells);
+  cvis->FillValue(0);
+  if (input->GetNumberOfStrips() > 0)
+  {
+    vtkWarningMacro("Triangle strips are not drawn; run vtkTriangleFilter first.");
+  }
+  if (input->GetNumberOfPolys() > 0 && nPts > 0)
+  {
+    CellWorker worker;
+    worker.Projector = &projector;
+    worker.Solver = solver;
+    worker.Points = input->GetPoints();
+    worker.PointVisible = pvis->GetPointer(0);
+    worker.Pixels = pixels->GetPointer(0);
+    worker.Depth = depth->GetPointer(0);
+    worker.Visible = cvis->GetPointer(0);
+    worker.CellOffset = input->GetNumberOfVerts() + input->GetNumberOfLines();
+    worker.Width = camera->GetImageWidth();
+    worker.Height = camera->GetImageHeight();
+    input->GetPolys()->Visit(CellDispatch{}, worker);
+  }
+  vtkCellData* cd = output->GetCellData();
+  cd->AddArray(depth);
+  cd->AddArray(cvis);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkCatadioptricProjection::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "CalibrationFileName: "
+     << (this->CalibrationFileName ? this->CalibrationFileName : "(none)") << "\n";
+  os << indent << "Solver: " << (this->Solver == ITERATIVE ? "Iterative" : "Quartic") << "\n";
+}

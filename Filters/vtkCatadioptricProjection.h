@@ -1,0 +1,86 @@
+/**
+ * @class   vtkCatadioptricProjection
+ * @brief   projects a surface mesh through a catadioptric camera's spherical mirror
+ *
+ * The camera enters the pipeline here, once per frame. Points stay in world coordinates; the
+ * filter adds
+ *  - point data: ImageCoordinates (2, pixels), MirrorPoint (3, camera frame), PathLength (mirror
+ *    point to vertex), ProjectionStatus (uint8, vtkCatadioptricCamera::StatusCodes) and Visible
+ *    (uint8: 1 when the vertex has a reflection and a pixel, inside the image or not);
+ *  - cell data: CentroidDepth (the distance from the cell centroid to the centroid's own reflection
+ *    point, the painter key of the method) and Visible (uint8: 1 when every vertex and the
+ *    centroid project and the cell's pixel bounding box meets the image);
+ *  - field data: the camera (vtkCatadioptricCamera::WriteToFieldData).
+ * Vertices and lines are passed through with Visible 0. Work is split over points and cells with
+ * vtkSMPTools.
+ *
+ * The camera comes from SetCamera(), or, when no camera object is set, from CalibrationFileName.
+ */
+#ifndef vtkCatadioptricProjection_h
+#define vtkCatadioptricProjection_h
+
+#include "CatadioptricARFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // for member
+
+#include <string> // for member
+
+class vtkCatadioptricCamera;
+
+class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricProjection : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkCatadioptricProjection* New();
+  vtkTypeMacro(vtkCatadioptricProjection, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The camera. Takes precedence over CalibrationFileName.
+  virtual void SetCamera(vtkCatadioptricCamera* camera);
+  vtkGetObjectMacro(Camera, vtkCatadioptricCamera);
+  ///@}
+
+  ///@{
+  /// A calibration file (YAML/JSON) to use when no camera object is set (e.g. from ParaView).
+  vtkSetStringMacro(CalibrationFileName);
+  vtkGetStringMacro(CalibrationFileName);
+  ///@}
+
+  /// Solvers for the reflection point.
+  enum Solvers
+  {
+    QUARTIC = 0,  ///< closed-form quartic + Newton polish (default)
+    ITERATIVE = 1 ///< safeguarded Newton on the planar reflection law
+  };
+  ///@{
+  /// Which solver finds each reflection point.
+  vtkSetClampMacro(Solver, int, QUARTIC, ITERATIVE);
+  vtkGetMacro(Solver, int);
+  void SetSolverToQuartic() { this->SetSolver(QUARTIC); }
+  void SetSolverToIterative() { this->SetSolver(ITERATIVE); }
+  ///@}
+
+  /// The modification time includes the camera's.
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkCatadioptricProjection();
+  ~vtkCatadioptricProjection() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// The camera to use for this execution (Camera, or one loaded from CalibrationFileName).
+  vtkCatadioptricCamera* ResolveCamera();
+
+  vtkCatadioptricCamera* Camera = nullptr;
+  char* CalibrationFileName = nullptr;
+  int Solver = QUARTIC;
+  vtkSmartPointer<vtkCatadioptricCamera> FileCamera;
+  std::string LoadedFileName;
+
+private:
+  vtkCatadioptricProjection(const vtkCatadioptricProjection&) = delete;
+  void operator=(const vtkCatadioptricProjection&) = delete;
+};
+
+#endif

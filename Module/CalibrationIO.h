@@ -1,0 +1,30 @@
+// CatadioptricAR Core: calibration files (YAML or JSON, through cv::FileStorage).
+//
+// The format (README, "Calibration files"): image_width, image_height, camera_matrix (3x3),
+// distortion_coefficients (k1 k2 p1 p2 [k3]), mirror {type: sphere, center [x y z] in the camera
+// frame, radius}, world_to_camera (4x4). Matrices may be written as OpenCV matrices
+// (!!opencv-matrix) or as plain sequences (row-major).
+#ifndef catarCalibrationIO_h
+#define catarCalibrationIO_h
+
+#include "CameraModel.h"
+
+#include <string>
+
+namespace catar
+{
+/// Reads a calibration file. On failure returns false and says why in `error` (file name and the
+/// offending key); `model` is left unchanged.
+bool LoadCalibration(const std::string& path, CameraModel& model, std::string& error);
+
+/// Reads a calibration given as text (YAML or JSON), for embedding. Same rules as LoadCalibration.
+bool ParseCalibration(const std::string& text, CameraModel& model, std::string& error);
+
+/// Writes a calibration file; the format follows the extension (.yaml/.yml or .json).
+bool SaveCalibration(const std::string& path, const CameraModel& model, std::string& error);
+
+/// The calibration as YAML (or JSON) text.
+std::string CalibrationToString(const CameraModel& model, bool json = false);
+} // namespace catar
+
+#endif

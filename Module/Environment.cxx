@@ -1,0 +1,164 @@
+#include "Environment.h"
+
+#include "SphereProjection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace catar
+{
+namespace
+{
+// 1 on a grid line of the given spacing and half width, 0 elsewhere.
+inline bool OnGrid(double u, double spacing, double halfWidth)
+{
+  const double f = u / spacing - std::floor(u / spacing);
+  return f * spacing < halfWidth || (1.0 - f) * spacing < halfWidth;
+}
+
+inline bool InRect(double u, double v, double u0, double u1, double v0, double v1)
+{
+  return u >= u0 && u <= u1 && v >= v0 && v <= v1;
+}
+
+Vec3 WallColor(int wall, double u, double z, const RoomEnvironment& room)
+{
+  static const Vec3 base[4] = { Vec3(0.52, 0.62, 0.80), Vec3(0.58, 0.74, 0.58),
+    Vec3(0.86, 0.80, 0.64), Vec3(0.80, 0.58, 0.52) };
+  if (z < room.minCorner.z() + 0.12)
+  {
+    return Vec3(0.25, 0.22, 0.2); // skirting board
+  }
+  if (wall == 2 && InRect(u, z, -0.7, 0.7, 0.9, 2.1))
+  {
+    // Window with a cross-shaped frame; sky brighter at the top.
+    if (std::abs(u) < 0.03 || std::abs(z - 1.5) < 0.03 || !InRect(u, z, -0.65, 0.65, 0.95, 2.05))
+    {
+      return Vec3(0.95, 0.95, 0.95);
+    }
+    const double k = (z - 0.9) / 1.2;
+    return Vec3(0.55 + 0.3 * k, 0.75 + 0.15 * k, 0.98);
+  }
+  if (wall == 1 && InRect(u, z, -0.5, 0.3, room.minCorner.z(), 2.0))
+  {
+    const bool handle = InRect(u, z, 0.15, 0.22, 0.95, 1.02);
+    return handle ? Vec3(0.9, 0.8, 0.3) : Vec3(0.42, 0.25, 0.12);
+  }
+  if (OnGrid(u, room.wallTile, 0.012) || OnGrid(z, room.wallTile, 0.012))
+  {
+    return base[wall] * 0.55;
+  }
+  return base[wall];
+}
+} // namespace
+
+Vec3 RoomColor(const RoomEnvironment& room, const Vec3& origin, const Vec3& d)
+{
+  // Exit point of the ray from the box (the origin is clamped into the box).
+  const Vec3 o = origin.cwiseMax(room.minCorner).cwiseMin(room.maxCorner);
+  double tExit = std::numeric_limits<double>::infinity();
+  int face = -1; // 0:-x 1:+x 2:-y 3:+y 4:floor 5:ceiling
+  for (int k = 0; k < 3; ++k)
+  {
+    if (d[k] > 0.0)
+    {
+      const double t = (room.maxCorner[k] - o[k]) / d[k];
+      if (t < tExit)
+      {
+        tExit = t;
+        face = 2 * k + 1;
+      }
+    }
+    else if (d[k] < 0.0)
+    {
+      const double t = (room.minCorner[k] - o[k]) / d[k];
+      if (t < tExit)
+      {
+        tExit = t;
+        face = 2 * k;
+      }
+    }
+  }
+  if (face < 0 || !std::isfinite(tExit))
+  {
+    return Vec3(0, 0, 0);
+  }
+  const Vec3 p = o + tExit * d;
+  switch (face)
+  {
+    case 4: // floor: checker
+    {
+      const long i = static_cast<long>(std::floor(p.x() / room.floorTile));
+      const long j = static_cast<long>(std::floor(p.y() / room.floorTile));
+      if (OnGrid(p.x(), room.floorTile, 0.006) || OnGrid(p.y(), room.floorTile, 0.006))
+      {
+        return Vec3(0.15, 0.13, 0.12);
+      }
+      return ((i + j) & 1) ? Vec3(0.78, 0.66, 0.48) : Vec3(0.46, 0.34, 0.24);
+    }
+    case 5: // ceiling: panels and a lamp
+    {
+      if (InRect(p.x(), p.y(), -0.4, 0.4, -0.4, 0.4))
+      {
+        return Vec3(1.0, 0.98, 0.9);
+      }
+      if (OnGrid(p.x(), 0.6, 0.01) || OnGrid(p.y(), 0.6, 0.01))
+      {
+        return Vec3(0.6, 0.6, 0.62);
+      }
+      return Vec3(0.88, 0.88, 0.9);
+    }
+    case 0:
+      return WallColor(1, p.y(), p.z(), room);
+    case 1:
+      return WallColor(0, p.y(), p.z(), room);
+    case 2:
+      return WallColor(3, p.x(), p.z(), room);
+    default:
+      return WallColor(2, p.x(), p.z(), room);
+  }
+}
+
+void RenderEnvironmentRows(const SphereProjector& projector, const RoomEnvironment& room,
+  int samples, const ImageView& target, int y0, int y1)
+{
+  samples = std::max(1, std::min(8, samples));
+  const CameraModel& model = projector.GetModel();
+  const Vec3 eye = model.CameraToWorld(Vec3::Zero());
+  const double inv = 1.0 / (samples * samples);
+  for (int y = std::max(0, y0); y < std::min(target.height, y1); ++y)
+  {
+    for (int x = 0; x < target.width; ++x)
+    {
+      Vec3 sum = Vec3::Zero();
+      for (int sy = 0; sy < samples; ++sy)
+      {
+        for (int sx = 0; sx < samples; ++sx)
+        {
+          const Vec2 px(x + (sx + 0.5) / samples - 0.5, y + (sy + 0.5) / samples - 0.5);
+          const BackProjectedRay ray = projector.BackProjectWorld(px);
+          if (HasProjection(ray.status))
+          {
+            sum += 0.92 * RoomColor(room, ray.mirrorPoint, ray.direction); // ~92% reflectance
+            continue;
+          }
+          Vec2 xy;
+          if (ray.status == ProjectionStatus::NoReflection && model.PixelToNormalized(px, xy))
+          {
+            const Vec3 d = model.CameraToWorldDirection(Vec3(xy.x(), xy.y(), 1.0).normalized());
+            sum += RoomColor(room, eye, d);
+          }
+        }
+      }
+      sum *= inv;
+      std::uint8_t* out = target.pixel(x, y);
+      for (int k = 0; k < 3; ++k)
+      {
+        out[k] = static_cast<std::uint8_t>(std::lround(255.0 * std::min(1.0, std::max(0.0, sum[k]))));
+      }
+      out[3] = 255;
+    }
+  }
+}
+} // namespace catar

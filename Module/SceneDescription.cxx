@@ -1,0 +1,346 @@
+#include "SceneDescription.h"
+
+#include "CalibrationIO.h"
+#include "FileStorageUtil.h"
+
+#include <opencv2/core.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace catar
+{
+namespace
+{
+std::string Resolve(const std::string& baseDir, const std::string& path)
+{
+  if (path.empty() || path[0] == '/' || baseDir.empty())
+  {
+    return path;
+  }
+  return baseDir + "/" + path;
+}
+
+std::string DirName(const std::string& path)
+{
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos)
+  {
+    return ".";
+  }
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+Vec3 Vec3Or(const cv::FileNode& parent, const std::string& key, const Vec3& fallback)
+{
+  const cv::FileNode n = parent[key];
+  if (n.empty() || n.isNone())
+  {
+    return fallback;
+  }
+  std::vector<double> v = fs::Numbers(n, key);
+  if (v.size() == 1)
+  {
+    return Vec3::Constant(v[0]);
+  }
+  if (v.size() != 3)
+  {
+    throw fs::ParseError("'" + key + "' must have 1 or 3 numbers");
+  }
+  return Vec3(v[0], v[1], v[2]);
+}
+
+Vec3 ColorOr(const cv::FileNode& parent, const std::string& key, const Vec3& fallback)
+{
+  const Vec3 c = Vec3Or(parent, key, fallback);
+  if ((c.array() < 0.0).any() || (c.array() > 1.0).any())
+  {
+    throw fs::ParseError("'" + key + "' must be RGB in [0, 1]");
+  }
+  return c;
+}
+
+SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int index)
+{
+  std::ostringstream where;
+  where << "objects[" << index << "]";
+  if (!node.isMap())
+  {
+    throw fs::ParseError(where.str() + " must be a map");
+  }
+  try
+  {
+    SceneObject o;
+    o.type = fs::String(node, "type", "");
+    o.file = fs::String(node, "file", "");
+    if (o.type.empty())
+    {
+      o.type = o.file.empty() ? "box" : "mesh";
+    }
+    if (o.type == "mesh")
+    {
+      if (o.file.empty())
+      {
+        throw fs::ParseError("type 'mesh' needs 'file'");
+      }
+      o.file = Resolve(baseDir, o.file);
+    }
+    else if (o.type != "box" && o.type != "sphere" && o.type != "torus" && o.type != "cylinder" &&
+      o.type != "plane")
+    {
+      throw fs::ParseError("unknown type '" + o.type +
+        "' (mesh, box, sphere, torus, cylinder, plane)");
+    }
+    o.name = fs::String(node, "name", o.type);
+    o.size = Vec3Or(node, "size", o.size);
+    o.radius = fs::Number(node, "radius", o.radius);
+    o.tubeRadius = fs::Number(node, "tube_radius", o.tubeRadius);
+    o.height = fs::Number(node, "height", o.height);
+    const double res = fs::Number(node, "resolution", o.resolution);
+    if (res < 1 || res > 4096 || res != std::floor(res))
+    {
+      throw fs::ParseError("'resolution' must be an integer in [1, 4096]");
+    }
+    o.resolution = static_cast<int>(res);
+    if ((o.size.array() <= 0.0).any() || !(o.radius > 0) || !(o.tubeRadius > 0) ||
+      !(o.height > 0))
+    {
+      throw fs::ParseError("sizes and radii must be positive");
+    }
+    o.translate = Vec3Or(node, "translate", o.translate);
+    o.rotate = Vec3Or(node, "rotate", o.rotate);
+    o.scale = Vec3Or(node, "scale", o.scale);
+    if ((o.scale.array() == 0.0).any())
+    {
+      throw fs::ParseError("'scale' must not be zero");
+    }
+    o.color = ColorOr(node, "color", o.color);
+    o.opacity = fs::Number(node, "opacity", o.opacity);
+    if (!(o.opacity >= 0.0 && o.opacity <= 1.0))
+    {
+      throw fs::ParseError("'opacity' must be in [0, 1]");
+    }
+    o.faceColors = fs::Number(node, "face_colors", o.faceColors ? 1 : 0) != 0;
+    o.pattern = fs::String(node, "pattern", o.pattern);
+    if (o.pattern != "none" && o.pattern != "checker")
+    {
+      throw fs::ParseError("'pattern' must be 'none' or 'checker'");
+    }
+    o.patternSize = fs::Number(node, "pattern_size", o.patternSize);
+    if (!(o.patternSize > 0))
+    {
+      throw fs::ParseError("'pattern_size' must be positive");
+    }
+    return o;
+  }
+  catch (const fs::ParseError& e)
+  {
+    throw fs::ParseError(where.str() + ": " + e.what());
+  }
+}
+
+void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescription& out)
+{
+  SceneDescription scene;
+  const cv::FileNode cam = root["camera"];
+  if (cam.isString())
+  {
+    const std::string path = Resolve(baseDir, static_cast<std::string>(cam));
+    std::string error;
+    if (!LoadCalibration(path, scene.camera, error))
+    {
+      throw fs::ParseError("camera: " + error);
+    }
+  }
+  else if (cam.isMap())
+  {
+    try
+    {
+      fs::ReadCalibration(cam, scene.camera);
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(std::string("camera: ") + e.what());
+    }
+  }
+  else
+  {
+    throw fs::ParseError("'camera' must name a calibration file or hold a calibration map");
+  }
+  const cv::FileNode output = root["output"];
+  if (output.isMap())
+  {
+    const double w = fs::Number(output, "width", 0);
+    const double h = fs::Number(output, "height", 0);
+    if (w < 0 || h < 0 || w > 1e5 || h > 1e5 || w != std::floor(w) || h != std::floor(h))
+    {
+      throw fs::ParseError("output: width and height must be positive integers");
+    }
+    scene.width = static_cast<int>(w);
+    scene.height = static_cast<int>(h);
+  }
+  const std::string solver = fs::String(root, "solver", "quartic");
+  if (solver == "quartic")
+  {
+    scene.solver = SolverType::Quartic;
+  }
+  else if (solver == "iterative")
+  {
+    scene.solver = SolverType::Iterative;
+  }
+  else
+  {
+    throw fs::ParseError("'solver' must be 'quartic' or 'iterative'");
+  }
+  const cv::FileNode bg = root["background"];
+  if (bg.isMap())
+  {
+    scene.background.type = fs::String(bg, "type", "environment");
+    if (scene.background.type != "environment" && scene.background.type != "color" &&
+      scene.background.type != "image")
+    {
+      throw fs::ParseError("background: 'type' must be environment, color or image");
+    }
+    scene.background.color = ColorOr(bg, "color", scene.background.color);
+    scene.background.image = Resolve(baseDir, fs::String(bg, "image", ""));
+    if (scene.background.type == "image" && scene.background.image.empty())
+    {
+      throw fs::ParseError("background: type 'image' needs 'image'");
+    }
+    const double s = fs::Number(bg, "samples", scene.background.samples);
+    if (s < 1 || s > 8 || s != std::floor(s))
+    {
+      throw fs::ParseError("background: 'samples' must be an integer in [1, 8]");
+    }
+    scene.background.samples = static_cast<int>(s);
+  }
+  const cv::FileNode objects = root["objects"];
+  if (!objects.empty() && !objects.isNone())
+  {
+    if (!objects.isSeq())
+    {
+      throw fs::ParseError("'objects' must be a sequence");
+    }
+    int i = 0;
+    for (cv::FileNodeIterator it = objects.begin(); it != objects.end(); ++it, ++i)
+    {
+      scene.objects.push_back(ReadObject(*it, baseDir, i));
+    }
+  }
+  out = scene;
+}
+
+bool ParseStorage(cv::FileStorage& storage, const std::string& what, const std::string& baseDir,
+  SceneDescription& scene, std::string& error)
+{
+  try
+  {
+    ReadScene(storage.root(), baseDir, scene);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    error = what + ": " + e.what();
+    return false;
+  }
+}
+} // namespace
+
+bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error)
+{
+  cv::FileStorage storage;
+  try
+  {
+    if (!storage.open(path, cv::FileStorage::READ))
+    {
+      error = path + ": cannot open the scene file";
+      return false;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = path + ": not a valid YAML/JSON file (" + e.msg + ")";
+    return false;
+  }
+  if (!ParseStorage(storage, path, DirName(path), scene, error))
+  {
+    return false;
+  }
+  scene.fileName = path;
+  return true;
+}
+
+bool ParseScene(const std::string& text, const std::string& baseDir, SceneDescription& scene,
+  std::string& error)
+{
+  cv::FileStorage storage;
+  try
+  {
+    if (!storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY))
+    {
+      error = "scene text: cannot be parsed";
+      return false;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "scene text: not valid YAML/JSON (" + e.msg + ")";
+    return false;
+  }
+  return ParseStorage(storage, "scene text", baseDir, scene, error);
+}
+
+const char* DemoSceneText()
+{
+  return R"(%YAML:1.0
+---
+# The built-in demo: a spherical mirror (5 cm radius) hanging in a room; the camera, 14 cm in
+# front of the mirror centre, looks at it. World frame: z up, metres. The objects are behind
+# and beside the camera, so the camera sees them only in the mirror.
+camera:
+  image_width: 1328
+  image_height: 1048
+  camera_matrix: [ 1000.0, 0.0, 663.5, 0.0, 1000.0, 523.5, 0.0, 0.0, 1.0 ]
+  distortion_coefficients: [ 0.0, 0.0, 0.0, 0.0, 0.0 ]
+  mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
+  # camera at world (0, -0.14, 1.0) looking along world +y, image up = world +z
+  world_to_camera: [ 1.0, 0.0, 0.0, 0.0,
+                     0.0, 0.0, -1.0, 1.0,
+                     0.0, 1.0, 0.0, 0.14,
+                     0.0, 0.0, 0.0, 1.0 ]
+output: { width: 1328, height: 1048 }
+solver: quartic
+background: { type: environment, samples: 2 }
+objects:
+  - name: parallelepiped
+    type: box
+    size: [ 0.22, 0.10, 0.08 ]
+    resolution: 24
+    translate: [ 0.12, -0.42, 0.86 ]
+    rotate: [ 0.0, 0.0, 25.0 ]
+    face_colors: 1
+  - name: torus
+    type: torus
+    radius: 0.07
+    tube_radius: 0.025
+    resolution: 48
+    translate: [ -0.17, -0.32, 1.12 ]
+    rotate: [ 70.0, 0.0, 20.0 ]
+    color: [ 0.95, 0.55, 0.1 ]
+    pattern: checker
+    pattern_size: 0.02
+)";
+}
+
+SceneDescription DemoScene()
+{
+  SceneDescription scene;
+  std::string error;
+  if (!ParseScene(DemoSceneText(), "", scene, error))
+  {
+    // The built-in text is fixed; a failure here is a programming error caught by the tests.
+    throw std::runtime_error("built-in demo scene: " + error);
+  }
+  return scene;
+}
+} // namespace catar

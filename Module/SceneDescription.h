@@ -1,0 +1,75 @@
+// CatadioptricAR Core: scene files (YAML or JSON, through cv::FileStorage).
+//
+// A scene names the camera (a calibration file or an inline calibration map), the output size,
+// the background, and the objects (a mesh file or a procedural object, a transform, a colour).
+// The keys are documented in README ("Scene files"); every error names the key at fault.
+#ifndef catarSceneDescription_h
+#define catarSceneDescription_h
+
+#include "CameraModel.h"
+#include "SphereProjection.h"
+
+#include <string>
+#include <vector>
+
+namespace catar
+{
+/// One object of a scene.
+struct SceneObject
+{
+  std::string name;
+  /// "mesh" (a file any VTK reader takes) or a procedural object: "box", "sphere", "torus",
+  /// "cylinder", "plane".
+  std::string type = "box";
+  std::string file; ///< mesh file, resolved against the scene file's folder
+  Vec3 size = Vec3(0.1, 0.1, 0.1); ///< box edge lengths; plane uses x, y
+  double radius = 0.05;            ///< sphere, cylinder, torus ring radius
+  double tubeRadius = 0.02;        ///< torus tube radius
+  double height = 0.1;             ///< cylinder height
+  int resolution = 16;             ///< subdivisions per unit feature (edge, ring)
+  Vec3 translate = Vec3::Zero();   ///< world position, metres
+  Vec3 rotate = Vec3::Zero();      ///< degrees about world x, then y, then z
+  Vec3 scale = Vec3::Ones();
+  Vec3 color = Vec3(0.8, 0.8, 0.8); ///< RGB in [0,1]
+  double opacity = 1.0;
+  bool faceColors = false; ///< box: a colour per face (the paper's figure 5)
+  /// "none" or "checker": a 3D checker of `patternSize` (object coordinates) that darkens every
+  /// other cell, so that an unlit object shows its shape and the mirror's bending.
+  std::string pattern = "none";
+  double patternSize = 0.02;
+};
+
+/// Background of the output image.
+struct SceneBackground
+{
+  std::string type = "environment"; ///< "environment" (procedural room), "color" or "image"
+  Vec3 color = Vec3(0, 0, 0);
+  std::string image;  ///< image file for type "image"
+  int samples = 2;    ///< supersampling of the environment (samples x samples per pixel)
+};
+
+struct SceneDescription
+{
+  std::string fileName; ///< where it was read from ("" for built-in)
+  CameraModel camera;
+  int width = 0;  ///< output size; 0 = the calibration's
+  int height = 0;
+  SolverType solver = SolverType::Quartic;
+  SceneBackground background;
+  std::vector<SceneObject> objects;
+};
+
+/// Reads a scene file. Returns false and says why in `error` on failure.
+bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error);
+/// Reads a scene from text; relative paths resolve against `baseDir`.
+bool ParseScene(const std::string& text, const std::string& baseDir, SceneDescription& scene,
+  std::string& error);
+
+/// The built-in demo scene (README's picture): the paper's parallelepiped and a torus, seen in a
+/// spherical mirror hanging in a procedural room.
+SceneDescription DemoScene();
+/// The demo scene as YAML text (the same scene DemoScene() returns).
+const char* DemoSceneText();
+} // namespace catar
+
+#endif

@@ -1,0 +1,403 @@
+#include "vtkCatadioptricCompositor.h"
+
+#include "Rasterizer.h"
+
+#include "vtkCatadioptricCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <vector>
+
+vtkStandardNewMacro(vtkCatadioptricCompositor);
+
+namespace
+{
+// Reads RGBA in [0,1] from a colour array (uchar 0-255 or floating 0-1; 1 to 4 components).
+struct ColorSource
+{
+  vtkDataArray* Array = nullptr;
+  bool PerPoint = false;
+  bool Bytes = false;
+  int Components = 0;
+  float Solid[4] = { 1, 1, 1, 1 };
+
+  void Get(vtkIdType pointId, vtkIdType cellId, float rgba[4]) const
+  {
+    if (!this->Array)
+    {
+      std::copy(this->Solid, this->Solid + 4, rgba);
+      return;
+    }
+    const vtkIdType id = this->PerPoint ? pointId : cellId;
+    const double scale = this->Bytes ? 1.0 / 255.0 : 1.0;
+    float v[4] = { 0, 0, 0, 1 };
+    for (int k = 0; k < this->Components && k < 4; ++k)
+    {
+      v[k] = static_cast<float>(this->Array->GetComponent(id, k) * scale);
+    }
+    if (this->Components < 3) // grey (+ alpha)
+    {
+      v[3] = this->Components == 2 ? v[1] : 1.0f;
+      v[1] = v[2] = v[0];
+    }
+    std::copy(v, v + 4, rgba);
+  }
+};
+
+struct Triangle
+{
+  catar::RasterVertex V[3];
+  double Depth;
+  double YMin;
+  double YMax;
+};
+} // namespace
+
+vtkCatadioptricCompositor::vtkCatadioptricCompositor()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetColorArrayName("Colors");
+}
+
+vtkCatadioptricCompositor::~vtkCatadioptricCompositor()
+{
+  this->SetColorArrayName(nullptr);
+}
+
+int vtkCatadioptricCompositor::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  }
+  else
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  }
+  return 1;
+}
+
+int vtkCatadioptricCompositor::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int extent[6] = { 0, 0, 0, 0, 0, 0 };
+  vtkInformation* frameInfo = inputVector[0]->GetInformationObject(0);
+  if (frameInfo && frameInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    frameInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  }
+  else
+  {
+    // Without a frame the size is only known once the meshes' cameras are read; announce the
+    // best guess (ImageSize, or the last size) and set the real extent in RequestData.
+    const int w = this->ImageSize[0] > 0 ? this->ImageSize[0] : std::max(1, this->LastSize[0]);
+    const int h = this->ImageSize[1] > 0 ? this->ImageSize[1] : std::max(1, this->LastSize[1]);
+    extent[1] = w - 1;
+    extent[3] = h - 1;
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  return 1;
+}
+
+int vtkCatadioptricCompositor::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The whole frame is always needed.
+  vtkInformation* frameInfo = inputVector[0]->GetInformationObject(0);
+  if (frameInfo && frameInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    int extent[6];
+    frameInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+    frameInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+  }
+  return 1;
+}
+
+int vtkCatadioptricCompositor::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkImageData* frame = vtkImageData::GetData(inputVector[0]);
+  const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
+  this->NumberOfDrawnTriangles = 0;
+  this->NumberOfSkippedTriangles = 0;
+
+  // Image size: from the meshes' cameras, which must agree with each other and with the frame.
+  int width = 0;
+  int height = 0;
+  vtkNew<vtkCatadioptricCamera> camera;
+  for (int m = 0; m < nMeshes; ++m)
+  {
+    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
+    if (!mesh || mesh->GetNumberOfPoints() == 0)
+    {
+      continue;
+    }
+    if (!camera->ReadFromFieldData(mesh->GetFieldData()))
+    {
+      vtkErrorMacro("Mesh " << m << ": " << camera->GetLastError());
+      return 0;
+    }
+    if (width == 0)
+    {
+      width = camera->GetImageWidth();
+      height = camera->GetImageHeight();
+    }
+    else if (width != camera->GetImageWidth() || height != camera->GetImageHeight())
+    {
+      vtkErrorMacro("Mesh " << m << " was projected for a " << camera->GetImageWidth() << "x"
+                            << camera->GetImageHeight() << " image, mesh 0 for " << width << "x"
+                            << height << ".");
+      return 0;
+    }
+  }
+  int frameComponents = 0;
+  if (frame)
+  {
+    int dims[3];
+    frame->GetDimensions(dims);
+    vtkDataArray* scalars = frame->GetPointData()->GetScalars();
+    if (!scalars || scalars->GetDataType() != VTK_UNSIGNED_CHAR || dims[2] != 1)
+    {
+      vtkErrorMacro("The frame must be a 2D image of unsigned char scalars.");
+      return 0;
+    }
+    frameComponents = scalars->GetNumberOfComponents();
+    if (frameComponents < 1 || frameComponents > 4)
+    {
+      vtkErrorMacro("The frame must have 1 to 4 components, not " << frameComponents << ".");
+      return 0;
+    }
+    if (width != 0 && (dims[0] != width || dims[1] != height))
+    {
+      vtkErrorMacro("The frame is " << dims[0] << "x" << dims[1] << " but the camera image is "
+                                    << width << "x" << height << ".");
+      return 0;
+    }
+    width = dims[0];
+    height = dims[1];
+  }
+  if (this->ImageSize[0] > 0 && this->ImageSize[1] > 0 && !frame)
+  {
+    if (width != 0 && (this->ImageSize[0] != width || this->ImageSize[1] != height))
+    {
+      vtkErrorMacro("ImageSize " << this->ImageSize[0] << "x" << this->ImageSize[1]
+                                 << " differs from the camera image " << width << "x" << height
+                                 << ".");
+      return 0;
+    }
+    width = this->ImageSize[0];
+    height = this->ImageSize[1];
+  }
+  if (width <= 0 || height <= 0)
+  {
+    vtkErrorMacro("No image size: connect a frame, a projected mesh, or set ImageSize.");
+    return 0;
+  }
+  this->LastSize[0] = width;
+  this->LastSize[1] = height;
+
+  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
+  output->SetOrigin(0, 0, 0);
+  output->SetSpacing(1, 1, 1);
+  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  vtkUnsignedCharArray* outScalars =
+    vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
+  outScalars->SetName("RGBA");
+  unsigned char* out = outScalars->GetPointer(0);
+  const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
+
+  // Background: the frame (grey and RGB widened to RGBA), or a colour.
+  if (frame)
+  {
+    const unsigned char* in = static_cast<const unsigned char*>(
+      frame->GetPointData()->GetScalars()->GetVoidPointer(0));
+    const int nc = frameComponents;
+    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        const unsigned char* s = in + nc * i;
+        unsigned char* d = out + 4 * i;
+        if (nc >= 3)
+        {
+          d[0] = s[0];
+          d[1] = s[1];
+          d[2] = s[2];
+          d[3] = nc == 4 ? s[3] : 255;
+        }
+        else
+        {
+          d[0] = d[1] = d[2] = s[0];
+          d[3] = nc == 2 ? s[1] : 255;
+        }
+      }
+    });
+  }
+  else
+  {
+    unsigned char bg[4];
+    for (int k = 0; k < 4; ++k)
+    {
+      bg[k] = static_cast<unsigned char>(
+        std::lround(255.0 * std::min(1.0, std::max(0.0, this->BackgroundColor[k]))));
+    }
+    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        std::copy(bg, bg + 4, out + 4 * i);
+      }
+    });
+  }
+  this->UpdateProgress(0.2);
+
+  // Triangles in painter order.
+  std::vector<Triangle> triangles;
+  for (int m = 0; m < nMeshes; ++m)
+  {
+    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
+    if (!mesh || mesh->GetNumberOfPolys() == 0)
+    {
+      continue;
+    }
+    vtkDataArray* pixels = mesh->GetPointData()->GetArray("ImageCoordinates");
+    vtkDataArray* visible = mesh->GetCellData()->GetArray("Visible");
+    vtkDataArray* depth = mesh->GetCellData()->GetArray("CentroidDepth");
+    if (!pixels || pixels->GetNumberOfComponents() != 2 || !visible || !depth)
+    {
+      vtkErrorMacro("Mesh " << m << " lacks ImageCoordinates/Visible/CentroidDepth: run "
+                               "vtkCatadioptricProjection first.");
+      return 0;
+    }
+    ColorSource color;
+    for (int k = 0; k < 3; ++k)
+    {
+      color.Solid[k] = static_cast<float>(this->Color[k]);
+    }
+    if (this->ColorArrayName && *this->ColorArrayName)
+    {
+      if ((color.Array = mesh->GetPointData()->GetArray(this->ColorArrayName)))
+      {
+        color.PerPoint = true;
+      }
+      else
+      {
+        color.Array = mesh->GetCellData()->GetArray(this->ColorArrayName);
+      }
+      if (color.Array)
+      {
+        color.Bytes = color.Array->GetDataType() == VTK_UNSIGNED_CHAR;
+        color.Components = color.Array->GetNumberOfComponents();
+        if (color.Components > 4)
+        {
+          vtkWarningMacro("Colour array " << this->ColorArrayName << " has "
+                                          << color.Components << " components; using the first 4.");
+        }
+      }
+    }
+    const float opacity = static_cast<float>(this->Opacity);
+    const vtkIdType first = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+    vtkCellArray* polys = mesh->GetPolys();
+    vtkNew<vtkIdList> ids;
+    const vtkIdType nPolys = polys->GetNumberOfCells();
+    triangles.reserve(triangles.size() + static_cast<size_t>(nPolys));
+    for (vtkIdType c = 0; c < nPolys; ++c)
+    {
+      const vtkIdType cellId = first + c;
+      polys->GetCellAtId(c, ids);
+      const vtkIdType n = ids->GetNumberOfIds();
+      if (n < 3 || visible->GetComponent(cellId, 0) == 0)
+      {
+        this->NumberOfSkippedTriangles += std::max<vtkIdType>(0, n - 2);
+        continue;
+      }
+      auto vertex = [&](vtkIdType pid, catar::RasterVertex& v) {
+        double px[2];
+        pixels->GetTuple(pid, px);
+        v.x = px[0];
+        v.y = px[1];
+        float rgba[4];
+        color.Get(pid, cellId, rgba);
+        v.r = rgba[0];
+        v.g = rgba[1];
+        v.b = rgba[2];
+        v.a = rgba[3] * opacity;
+      };
+      // Fan triangulation of polygons.
+      for (vtkIdType k = 1; k + 1 < n; ++k)
+      {
+        Triangle t;
+        vertex(ids->GetId(0), t.V[0]);
+        vertex(ids->GetId(k), t.V[1]);
+        vertex(ids->GetId(k + 1), t.V[2]);
+        t.Depth = depth->GetComponent(cellId, 0);
+        t.YMin = std::min({ t.V[0].y, t.V[1].y, t.V[2].y });
+        t.YMax = std::max({ t.V[0].y, t.V[1].y, t.V[2].y });
+        triangles.push_back(t);
+      }
+    }
+  }
+  if (nMeshes > 1)
+  {
+    // One far-to-near order across meshes; each mesh keeps its own order among equal depths.
+    std::stable_sort(triangles.begin(), triangles.end(),
+      [](const Triangle& a, const Triangle& b) { return a.Depth > b.Depth; });
+  }
+  this->UpdateProgress(0.4);
+
+  // Rasterise in horizontal bands in parallel; each band draws every triangle that meets it, in
+  // order, so the painter order holds within every pixel.
+  catar::ImageView view;
+  view.width = width;
+  view.height = height;
+  view.rowStride = -4 * static_cast<std::ptrdiff_t>(width);
+  view.data = out + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1); // top row (y = 0)
+  constexpr int kBand = 32;
+  const int nBands = (height + kBand - 1) / kBand;
+  vtkSMPTools::For(0, nBands, 1, [&](vtkIdType b0, vtkIdType b1) {
+    for (vtkIdType b = b0; b < b1; ++b)
+    {
+      const catar::PixelRect band{ 0, static_cast<int>(b * kBand), width,
+        static_cast<int>(std::min<vtkIdType>(height, (b + 1) * kBand)) };
+      for (const Triangle& t : triangles)
+      {
+        if (t.YMax < band.y0 - 0.5 || t.YMin > band.y1 - 0.5)
+        {
+          continue;
+        }
+        catar::rasterizeTriangle(view, t.V[0], t.V[1], t.V[2], band);
+      }
+    }
+  });
+  this->NumberOfDrawnTriangles = static_cast<vtkIdType>(triangles.size());
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkCatadioptricCompositor::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Color: " << this->Color[0] << ", " << this->Color[1] << ", " << this->Color[2]
+     << "\n";
+  os << indent << "Opacity: " << this->Opacity << "\n";
+  os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)")
+     << "\n";
+  os << indent << "BackgroundColor: " << this->BackgroundColor[0] << ", "
+     << this->BackgroundColor[1] << ", " << this->BackgroundColor[2] << ", "
+     << this->BackgroundColor[3] << "\n";
+  os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
+}

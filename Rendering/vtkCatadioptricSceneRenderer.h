@@ -1,0 +1,84 @@
+/**
+ * @class   vtkCatadioptricSceneRenderer
+ * @brief   renders a scene file (or the built-in demo) through the whole pipeline
+ *
+ * Reads a scene (YAML/JSON, see README "Scene files"), builds the objects (mesh files through
+ * VTK's readers, or procedural boxes, spheres, tori, cylinders, planes), and runs, for every
+ * frame, projection -> painter sort -> compositing onto the background (a synthesised room, a
+ * colour, or an image file). Meshes are prepared once; Render() can be called again after the
+ * camera pose changes, and then redoes only the per-frame stages.
+ *
+ * The wall-clock time of each stage of the last Render() is kept (GetStageName / GetStageTime).
+ */
+#ifndef vtkCatadioptricSceneRenderer_h
+#define vtkCatadioptricSceneRenderer_h
+
+#include "CatadioptricARRenderingModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <memory> // for std::unique_ptr
+
+class vtkCatadioptricCamera;
+class vtkImageData;
+
+class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricSceneRenderer : public vtkObject
+{
+public:
+  static vtkCatadioptricSceneRenderer* New();
+  vtkTypeMacro(vtkCatadioptricSceneRenderer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Scene file to read; when null or empty, the built-in demo scene is used.
+  vtkSetStringMacro(SceneFileName);
+  vtkGetStringMacro(SceneFileName);
+  ///@}
+
+  /// Reads the scene and builds the pipeline (meshes are prepared here). Returns false on a bad
+  /// scene (see GetLastError()). Render() calls it when needed.
+  bool LoadScene();
+
+  /// Renders a frame. Returns false on failure (see GetLastError()).
+  bool Render();
+
+  /// The last rendered frame (RGBA, VTK row order), or nullptr.
+  vtkImageData* GetOutput();
+
+  /// Writes the last frame as PNG. Returns false on failure.
+  bool WritePNG(const char* fileName);
+
+  /// The scene's camera; change its pose and call Render() again for a new frame.
+  vtkCatadioptricCamera* GetCamera();
+
+  ///@{
+  /// Timing of the last LoadScene()/Render(): stages "scene", "meshes", "background",
+  /// "projection", "sort", "composite"; seconds.
+  int GetNumberOfStages();
+  const char* GetStageName(int stage);
+  double GetStageTime(int stage);
+  ///@}
+
+  /// Number of triangles in the scene's meshes.
+  vtkIdType GetNumberOfTriangles();
+
+  /// The last error message ("" if none).
+  const char* GetLastError();
+
+  /// The built-in demo scene as YAML text.
+  static const char* GetDemoSceneText();
+
+protected:
+  vtkCatadioptricSceneRenderer();
+  ~vtkCatadioptricSceneRenderer() override;
+
+  char* SceneFileName = nullptr;
+
+private:
+  vtkCatadioptricSceneRenderer(const vtkCatadioptricSceneRenderer&) = delete;
+  void operator=(const vtkCatadioptricSceneRenderer&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,178 @@
+// Calibration files: round trips in YAML and JSON, accepted spellings, clear errors, and the lens
+// model against OpenCV's own projectPoints.
+#include "CalibrationIO.h"
+#include "SphereProjection.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+
+using namespace catar;
+
+namespace
+{
+CameraModel Sample()
+{
+  CameraModel m;
+  m.intrinsics = Intrinsics{ 1100.5, 1050.25, 640.2, 470.8, 0.7, 1280, 960 };
+  m.distortion = Distortion{ -0.21, 0.08, 0.0012, -0.0007, -0.01 };
+  m.mirror = SphereMirror{ Vec3(0.01, -0.02, 0.2), 0.06 };
+  m.worldToCamera << 0, -1, 0, 0.1, 1, 0, 0, -0.2, 0, 0, 1, 0.5, 0, 0, 0, 1;
+  return m;
+}
+
+std::string TempPath(const std::string& name)
+{
+  return ::testing::TempDir() + "/catar_" + name;
+}
+
+void ExpectSame(const CameraModel& a, const CameraModel& b)
+{
+  EXPECT_DOUBLE_EQ(a.intrinsics.fx, b.intrinsics.fx);
+  EXPECT_DOUBLE_EQ(a.intrinsics.fy, b.intrinsics.fy);
+  EXPECT_DOUBLE_EQ(a.intrinsics.cx, b.intrinsics.cx);
+  EXPECT_DOUBLE_EQ(a.intrinsics.cy, b.intrinsics.cy);
+  EXPECT_DOUBLE_EQ(a.intrinsics.skew, b.intrinsics.skew);
+  EXPECT_EQ(a.intrinsics.width, b.intrinsics.width);
+  EXPECT_EQ(a.intrinsics.height, b.intrinsics.height);
+  EXPECT_DOUBLE_EQ(a.distortion.k1, b.distortion.k1);
+  EXPECT_DOUBLE_EQ(a.distortion.p2, b.distortion.p2);
+  EXPECT_DOUBLE_EQ(a.distortion.k3, b.distortion.k3);
+  EXPECT_EQ(a.mirror.center, b.mirror.center);
+  EXPECT_DOUBLE_EQ(a.mirror.radius, b.mirror.radius);
+  EXPECT_EQ(a.worldToCamera, b.worldToCamera);
+}
+
+bool ParseText(const std::string& text, CameraModel& m, std::string& error)
+{
+  return ParseCalibration(text, m, error);
+}
+} // namespace
+
+TEST(CalibrationIO, RoundTripYamlAndJson)
+{
+  const CameraModel m = Sample();
+  for (const std::string ext : { ".yaml", ".yml", ".json" })
+  {
+    const std::string path = TempPath("roundtrip" + ext);
+    std::string error;
+    ASSERT_TRUE(SaveCalibration(path, m, error)) << error;
+    CameraModel back;
+    ASSERT_TRUE(LoadCalibration(path, back, error)) << error;
+    ExpectSame(m, back);
+    std::remove(path.c_str());
+  }
+  // And through text.
+  CameraModel back;
+  std::string error;
+  ASSERT_TRUE(ParseText(CalibrationToString(m, true), back, error)) << error;
+  ExpectSame(m, back);
+}
+
+TEST(CalibrationIO, PlainSequencesAndOptionalKeys)
+{
+  const std::string text = R"({
+    "image_width": 640, "image_height": 480,
+    "camera_matrix": [500, 0, 319.5, 0, 500, 239.5, 0, 0, 1],
+    "mirror": { "type": "sphere", "center": [0, 0, 0.3], "radius": 0.1 }
+  })";
+  CameraModel m;
+  std::string error;
+  ASSERT_TRUE(ParseText(text, m, error)) << error;
+  EXPECT_EQ(m.intrinsics.width, 640);
+  EXPECT_DOUBLE_EQ(m.intrinsics.cy, 239.5);
+  EXPECT_TRUE(m.distortion.IsZero());
+  EXPECT_EQ(m.worldToCamera, Mat4::Identity());
+  EXPECT_DOUBLE_EQ(m.mirror.center.z(), 0.3);
+}
+
+TEST(CalibrationIO, ErrorsNameTheProblem)
+{
+  struct Case
+  {
+    std::string text;
+    std::string expected;
+  };
+  const std::string good = R"("image_width": 640, "image_height": 480,
+    "camera_matrix": [500, 0, 319.5, 0, 500, 239.5, 0, 0, 1])";
+  const std::vector<Case> cases = {
+    { "{" + good + "}", "mirror" },
+    { R"({"image_width": 640, "camera_matrix": [500, 0, 319.5, 0, 500, 239.5, 0, 0, 1],
+         "mirror": {"center": [0,0,1], "radius": 0.1}})", "image_height" },
+    { "{" + good + R"(, "mirror": {"center": [0,0,1]}})", "radius" },
+    { "{" + good + R"(, "mirror": {"center": [0,0], "radius": 0.1}})", "mirror.center" },
+    { "{" + good + R"(, "mirror": {"type": "cone", "center": [0,0,1], "radius": 0.1}})", "cone" },
+    { "{" + good + R"(, "mirror": {"center": [0,0,0.05], "radius": 0.1}})", "inside" },
+    { "{" + good + R"(, "mirror": {"center": [0,0,1], "radius": -0.1}})", "radius" },
+    { "{" + good + R"(, "mirror": {"center": [0,0,1], "radius": 0.1},
+         "distortion_coefficients": [1, 2, 3]})", "distortion" },
+    { "{" + good + R"(, "mirror": {"center": [0,0,1], "radius": 0.1},
+         "world_to_camera": [2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]})", "rotation" },
+    { R"({"image_width": 640, "image_height": 480, "camera_matrix": [-5, 0, 1, 0, 5, 1, 0, 0, 1],
+         "mirror": {"center": [0,0,1], "radius": 0.1}})", "focal" },
+  };
+  for (const Case& c : cases)
+  {
+    CameraModel m;
+    const CameraModel before = m;
+    std::string error;
+    EXPECT_FALSE(ParseText(c.text, m, error)) << c.text;
+    EXPECT_NE(error.find(c.expected), std::string::npos) << "error '" << error << "' lacks '"
+                                                         << c.expected << "'";
+    ExpectSame(before, m); // untouched on failure
+  }
+  CameraModel m;
+  std::string error;
+  EXPECT_FALSE(LoadCalibration("/nonexistent/calibration.yaml", m, error));
+  EXPECT_NE(error.find("/nonexistent/calibration.yaml"), std::string::npos);
+  const std::string garbage = TempPath("garbage.yaml");
+  std::ofstream(garbage) << "%YAML:1.0\n---\nimage_width: [1, 2\n";
+  EXPECT_FALSE(LoadCalibration(garbage, m, error));
+  EXPECT_FALSE(error.empty());
+  std::remove(garbage.c_str());
+}
+
+TEST(CameraModel, LensMatchesOpenCVProjectPoints)
+{
+  CameraModel m = Sample();
+  m.intrinsics.skew = 0.0; // cv::projectPoints has no skew
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  std::vector<cv::Point3d> pts;
+  for (int i = 0; i < 2000; ++i)
+  {
+    pts.emplace_back(u(rng), u(rng), 1.0 + 0.5 * u(rng));
+  }
+  cv::Mat K = (cv::Mat_<double>(3, 3) << m.intrinsics.fx, 0, m.intrinsics.cx, 0, m.intrinsics.fy,
+    m.intrinsics.cy, 0, 0, 1);
+  cv::Mat D = (cv::Mat_<double>(1, 5) << m.distortion.k1, m.distortion.k2, m.distortion.p1,
+    m.distortion.p2, m.distortion.k3);
+  std::vector<cv::Point2d> px;
+  cv::projectPoints(pts, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D, px);
+  for (size_t i = 0; i < pts.size(); ++i)
+  {
+    const Vec2 mine = m.DirectionToPixel(Vec3(pts[i].x, pts[i].y, pts[i].z));
+    EXPECT_NEAR(mine.x(), px[i].x, 1e-9);
+    EXPECT_NEAR(mine.y(), px[i].y, 1e-9);
+    // And the inverse recovers the normalised coordinates.
+    Vec2 xy;
+    ASSERT_TRUE(m.PixelToNormalized(mine, xy));
+    EXPECT_NEAR(xy.x(), pts[i].x / pts[i].z, 1e-12);
+    EXPECT_NEAR(xy.y(), pts[i].y / pts[i].z, 1e-12);
+  }
+}
+
+TEST(CameraModel, ResizedKeepsRaysOnTheSameRelativePositions)
+{
+  const CameraModel m = Sample();
+  const CameraModel half = m.Resized(m.intrinsics.width / 2, m.intrinsics.height / 2);
+  const Vec3 d(0.1, -0.05, 1.0);
+  const Vec2 a = m.DirectionToPixel(d);
+  const Vec2 b = half.DirectionToPixel(d);
+  EXPECT_NEAR((b.x() + 0.5) * 2.0, a.x() + 0.5, 1e-9);
+  EXPECT_NEAR((b.y() + 0.5) * 2.0, a.y() + 0.5, 1e-9);
+}

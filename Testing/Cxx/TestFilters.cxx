@@ -1,0 +1,339 @@
+// vtkCatadioptricCamera, vtkCatadioptricProjection and vtkCatadioptricPainterSort.
+#include "CalibrationIO.h"
+#include "SphereProjection.h"
+
+#include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricPainterSort.h"
+#include "vtkCatadioptricProjection.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSphereSource.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "TestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace
+{
+// Camera of the demo: at world (0, -0.14, 1) looking along +y at a 5 cm mirror.
+void DemoCamera(vtkCatadioptricCamera* cam)
+{
+  cam->SetImageWidth(640);
+  cam->SetImageHeight(480);
+  cam->SetFocalLength(480, 480);
+  cam->SetPrincipalPoint(319.5, 239.5);
+  cam->SetMirrorCenter(0, 0, 0.14);
+  cam->SetMirrorRadius(0.05);
+  const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
+  cam->SetWorldToCameraElements(pose);
+}
+
+vtkSmartPointer<vtkPolyData> SphereAt(double x, double y, double z, double r)
+{
+  vtkNew<vtkSphereSource> s;
+  s->SetCenter(x, y, z);
+  s->SetRadius(r);
+  s->SetThetaResolution(24);
+  s->SetPhiResolution(12);
+  s->Update();
+  return s->GetOutput();
+}
+} // namespace
+
+TEST(vtkCatadioptricCamera, FieldDataAndFileRoundTrip)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  DemoCamera(cam);
+  cam->SetDistortion(-0.1, 0.01, 0.001, 0.002, 0.0);
+  ASSERT_TRUE(cam->IsValid()) << cam->GetLastError();
+  vtkNew<vtkFieldData> fd;
+  cam->WriteToFieldData(fd);
+  vtkNew<vtkCatadioptricCamera> back;
+  ASSERT_TRUE(back->ReadFromFieldData(fd)) << back->GetLastError();
+  EXPECT_EQ(back->GetImageWidth(), 640);
+  EXPECT_DOUBLE_EQ(back->GetDistortion()[3], 0.002);
+  EXPECT_DOUBLE_EQ(back->GetWorldToCamera()->GetElement(2, 3), 0.14);
+
+  const std::string path = ::testing::TempDir() + "/catar_vtkcamera.json";
+  ASSERT_TRUE(cam->Save(path.c_str())) << cam->GetLastError();
+  vtkNew<vtkCatadioptricCamera> loaded;
+  ASSERT_TRUE(loaded->Load(path.c_str())) << loaded->GetLastError();
+  EXPECT_DOUBLE_EQ(loaded->GetFocalLength()[0], 480);
+  double pos[3];
+  loaded->GetCameraPosition(pos);
+  EXPECT_NEAR(pos[1], -0.14, 1e-15);
+  EXPECT_NEAR(pos[2], 1.0, 1e-15);
+  std::remove(path.c_str());
+
+  // A failed load keeps the camera and says why.
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(loaded);
+  EXPECT_FALSE(loaded->Load("/nonexistent.yaml"));
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(std::string(loaded->GetLastError()).find("nonexistent"), std::string::npos);
+  EXPECT_DOUBLE_EQ(loaded->GetFocalLength()[0], 480);
+  // Empty field data has no camera.
+  vtkNew<vtkFieldData> empty;
+  EXPECT_FALSE(back->ReadFromFieldData(empty));
+}
+
+TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  DemoCamera(cam);
+  vtkNew<vtkCatadioptricProjection> proj;
+  proj->SetCamera(cam);
+  proj->SetInputData(SphereAt(0.1, -0.35, 0.9, 0.04));
+  proj->Update();
+  vtkPolyData* out = proj->GetOutput();
+  vtkDataArray* px = out->GetPointData()->GetArray("ImageCoordinates");
+  vtkDataArray* mp = out->GetPointData()->GetArray("MirrorPoint");
+  vtkDataArray* pl = out->GetPointData()->GetArray("PathLength");
+  vtkDataArray* st = out->GetPointData()->GetArray("ProjectionStatus");
+  vtkDataArray* vis = out->GetPointData()->GetArray("Visible");
+  vtkDataArray* depth = out->GetCellData()->GetArray("CentroidDepth");
+  vtkDataArray* cvis = out->GetCellData()->GetArray("Visible");
+  ASSERT_TRUE(px && mp && pl && st && vis && depth && cvis);
+  ASSERT_EQ(px->GetNumberOfComponents(), 2);
+  ASSERT_EQ(mp->GetNumberOfComponents(), 3);
+  // Points stay in world coordinates; the camera travels in field data.
+  EXPECT_EQ(out->GetPoints(), proj->GetInput() ? vtkPolyData::SafeDownCast(proj->GetInput())->GetPoints() : nullptr);
+  vtkNew<vtkCatadioptricCamera> fromField;
+  ASSERT_TRUE(fromField->ReadFromFieldData(out->GetFieldData()));
+
+  const catar::SphereProjector core(cam->GetModel());
+  int visibleCount = 0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    const catar::ProjectedPoint q = core.ProjectWorld(catar::Vec3(p[0], p[1], p[2]));
+    EXPECT_EQ(st->GetComponent(i, 0), static_cast<int>(q.status));
+    EXPECT_DOUBLE_EQ(px->GetComponent(i, 0), q.pixel.x());
+    EXPECT_DOUBLE_EQ(px->GetComponent(i, 1), q.pixel.y());
+    EXPECT_DOUBLE_EQ(mp->GetComponent(i, 2), q.mirrorPoint.z());
+    EXPECT_DOUBLE_EQ(pl->GetComponent(i, 0), q.pathLength);
+    visibleCount += vis->GetComponent(i, 0) != 0;
+  }
+  EXPECT_EQ(visibleCount, out->GetNumberOfPoints());
+  // CentroidDepth is the centroid's own path length.
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); c += 7)
+  {
+    out->GetCellPoints(c, ids);
+    catar::Vec3 centroid = catar::Vec3::Zero();
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      double p[3];
+      out->GetPoint(ids->GetId(k), p);
+      centroid += catar::Vec3(p[0], p[1], p[2]);
+    }
+    centroid /= static_cast<double>(ids->GetNumberOfIds());
+    EXPECT_NEAR(depth->GetComponent(c, 0), core.ProjectWorld(centroid).pathLength, 1e-15);
+    EXPECT_EQ(cvis->GetComponent(c, 0), 1);
+  }
+  // The iterative solver gives the same pixels.
+  proj->SetSolverToIterative();
+  proj->Update();
+  vtkDataArray* px2 = proj->GetOutput()->GetPointData()->GetArray("ImageCoordinates");
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    EXPECT_NEAR(px2->GetComponent(i, 0), core.ProjectWorld([&] {
+      double p[3];
+      proj->GetOutput()->GetPoint(i, p);
+      return catar::Vec3(p[0], p[1], p[2]);
+    }()).pixel.x(), 1e-9);
+  }
+}
+
+TEST(vtkCatadioptricProjection, CellsWithAHiddenVertexAreInvisible)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  DemoCamera(cam);
+  // A sphere straddling the mirror's shadow: behind the mirror (world y > 0.05) some vertices are
+  // hidden, some cells are invisible, none is NaN.
+  vtkNew<vtkCatadioptricProjection> proj;
+  proj->SetCamera(cam);
+  proj->SetInputData(SphereAt(0.0, 0.2, 1.0, 0.12));
+  proj->Update();
+  vtkPolyData* out = proj->GetOutput();
+  vtkDataArray* st = out->GetPointData()->GetArray("ProjectionStatus");
+  vtkDataArray* vis = out->GetPointData()->GetArray("Visible");
+  vtkDataArray* px = out->GetPointData()->GetArray("ImageCoordinates");
+  int hidden = 0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_TRUE(std::isfinite(px->GetComponent(i, 0)) && std::isfinite(px->GetComponent(i, 1)));
+    if (st->GetComponent(i, 0) == vtkCatadioptricCamera::HIDDEN_BY_MIRROR ||
+      st->GetComponent(i, 0) == vtkCatadioptricCamera::INSIDE_MIRROR)
+    {
+      ++hidden;
+      EXPECT_EQ(vis->GetComponent(i, 0), 0);
+    }
+  }
+  EXPECT_GT(hidden, 0);
+  vtkDataArray* cvis = out->GetCellData()->GetArray("Visible");
+  vtkNew<vtkIdList> ids;
+  int invisibleCells = 0;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    out->GetCellPoints(c, ids);
+    bool all = true;
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      all = all && vis->GetComponent(ids->GetId(k), 0) != 0;
+    }
+    if (!all)
+    {
+      EXPECT_EQ(cvis->GetComponent(c, 0), 0) << c;
+      ++invisibleCells;
+    }
+  }
+  EXPECT_GT(invisibleCells, 0);
+}
+
+TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
+{
+  vtkNew<vtkCatadioptricProjection> proj;
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(proj);
+  proj->SetInputData(SphereAt(0, -0.3, 1, 0.05));
+  // No camera.
+  proj->Update();
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("No camera"), std::string::npos) << errors->Last;
+  // An invalid camera (camera inside the mirror).
+  vtkNew<vtkCatadioptricCamera> cam;
+  DemoCamera(cam);
+  cam->SetMirrorCenter(0, 0, 0.01);
+  proj->SetCamera(cam);
+  proj->Update();
+  EXPECT_EQ(proj->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(errors->Count, 2);
+  EXPECT_NE(errors->Last.find("inside the mirror"), std::string::npos) << errors->Last;
+  // A missing calibration file.
+  proj->SetCamera(nullptr);
+  proj->SetCalibrationFileName("/nonexistent/calibration.yaml");
+  proj->Update();
+  EXPECT_EQ(proj->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(errors->Count, 3);
+  EXPECT_NE(errors->Last.find("/nonexistent/calibration.yaml"), std::string::npos);
+  // Empty input is fine.
+  DemoCamera(cam);
+  proj->SetCamera(cam);
+  vtkNew<vtkPolyData> empty;
+  proj->SetInputData(empty);
+  proj->Update();
+  EXPECT_EQ(proj->GetOutput()->GetNumberOfPoints(), 0);
+  // NaN coordinates give INVALID_INPUT, not NaN pixels.
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(std::nan(""), 0, 1);
+  pts->InsertNextPoint(0.1, -0.3, 1);
+  pts->InsertNextPoint(0.1, -0.3, 1.1);
+  vtkNew<vtkCellArray> tris;
+  const vtkIdType tri[3] = { 0, 1, 2 };
+  tris->InsertNextCell(3, tri);
+  vtkNew<vtkPolyData> bad;
+  bad->SetPoints(pts);
+  bad->SetPolys(tris);
+  proj->SetInputData(bad);
+  proj->Update();
+  vtkPolyData* out = proj->GetOutput();
+  ASSERT_EQ(out->GetNumberOfPoints(), 3);
+  EXPECT_EQ(out->GetPointData()->GetArray("ProjectionStatus")->GetComponent(0, 0),
+    vtkCatadioptricCamera::INVALID_INPUT);
+  EXPECT_EQ(out->GetPointData()->GetArray("ImageCoordinates")->GetComponent(0, 0), 0.0);
+  EXPECT_EQ(out->GetCellData()->GetArray("Visible")->GetComponent(0, 0), 0);
+}
+
+TEST(vtkCatadioptricPainterSort, FarToNearWithCellDataAligned)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  DemoCamera(cam);
+  vtkNew<vtkCatadioptricProjection> proj;
+  proj->SetCamera(cam);
+  vtkSmartPointer<vtkPolyData> sphere = SphereAt(0.05, -0.3, 0.95, 0.06);
+  // Tag each cell with its original id to check that cell data follows the cells.
+  vtkNew<vtkIdTypeArray> tag;
+  tag->SetName("OriginalId");
+  tag->SetNumberOfTuples(sphere->GetNumberOfCells());
+  for (vtkIdType c = 0; c < sphere->GetNumberOfCells(); ++c)
+  {
+    tag->SetValue(c, c);
+  }
+  sphere->GetCellData()->AddArray(tag);
+  proj->SetInputData(sphere);
+  vtkNew<vtkCatadioptricPainterSort> sort;
+  sort->SetInputConnection(proj->GetOutputPort());
+  sort->Update();
+  vtkPolyData* in = proj->GetOutput();
+  vtkPolyData* out = sort->GetOutput();
+  ASSERT_EQ(out->GetNumberOfCells(), in->GetNumberOfCells());
+  vtkDataArray* depth = out->GetCellData()->GetArray("CentroidDepth");
+  vtkDataArray* ids = out->GetCellData()->GetArray("OriginalId");
+  vtkDataArray* inDepth = in->GetCellData()->GetArray("CentroidDepth");
+  ASSERT_TRUE(depth && ids);
+  vtkNew<vtkIdList> a, b;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    if (c > 0)
+    {
+      EXPECT_GE(depth->GetComponent(c - 1, 0), depth->GetComponent(c, 0));
+    }
+    const vtkIdType orig = static_cast<vtkIdType>(ids->GetComponent(c, 0));
+    EXPECT_EQ(depth->GetComponent(c, 0), inDepth->GetComponent(orig, 0));
+    out->GetCellPoints(c, a);
+    in->GetCellPoints(orig, b);
+    ASSERT_EQ(a->GetNumberOfIds(), b->GetNumberOfIds());
+    for (vtkIdType k = 0; k < a->GetNumberOfIds(); ++k)
+    {
+      EXPECT_EQ(a->GetId(k), b->GetId(k));
+    }
+  }
+  EXPECT_EQ(out->GetPoints(), in->GetPoints());
+  EXPECT_NE(out->GetFieldData()->GetArray("CameraIntrinsics"), nullptr);
+
+  // Dropping invisible cells: hide half the cells by hand.
+  vtkNew<vtkPolyData> copy;
+  copy->DeepCopy(in);
+  vtkUnsignedCharArray* vis =
+    vtkUnsignedCharArray::SafeDownCast(copy->GetCellData()->GetArray("Visible"));
+  for (vtkIdType c = 0; c < copy->GetNumberOfCells(); c += 2)
+  {
+    vis->SetValue(c, 0);
+  }
+  sort->SetInputData(copy);
+  sort->DropInvisibleCellsOn();
+  sort->Update();
+  EXPECT_EQ(sort->GetOutput()->GetNumberOfCells(), copy->GetNumberOfCells() / 2);
+  vtkDataArray* outVis = sort->GetOutput()->GetCellData()->GetArray("Visible");
+  for (vtkIdType c = 0; c < sort->GetOutput()->GetNumberOfCells(); ++c)
+  {
+    EXPECT_EQ(outVis->GetComponent(c, 0), 1);
+  }
+}
+
+TEST(vtkCatadioptricPainterSort, RequiresProjectedInput)
+{
+  vtkNew<vtkCatadioptricPainterSort> sort;
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(sort);
+  sort->SetInputData(SphereAt(0, 0, 0, 1));
+  sort->Update();
+  EXPECT_EQ(sort->GetOutput()->GetNumberOfCells(), 0);
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("CentroidDepth"), std::string::npos);
+}

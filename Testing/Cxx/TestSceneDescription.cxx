@@ -1,0 +1,104 @@
+// Scene files: the demo scene parses; errors name the key; paths resolve against the scene.
+#include "SceneDescription.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+using namespace catar;
+
+namespace
+{
+const char* kCamera = R"(camera: { image_width: 320, image_height: 240,
+  camera_matrix: [300, 0, 159.5, 0, 300, 119.5, 0, 0, 1],
+  mirror: { center: [0, 0, 0.2], radius: 0.05 } }
+)";
+}
+
+TEST(SceneDescription, DemoSceneParses)
+{
+  const SceneDescription s = DemoScene();
+  EXPECT_EQ(s.camera.intrinsics.width, 1328);
+  EXPECT_EQ(s.width, 1328);
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.objects[0].type, "box");
+  EXPECT_TRUE(s.objects[0].faceColors);
+  EXPECT_EQ(s.objects[1].type, "torus");
+  EXPECT_EQ(s.background.type, "environment");
+  EXPECT_TRUE(s.camera.Validate().empty());
+}
+
+TEST(SceneDescription, ObjectsAndDefaults)
+{
+  const std::string text = std::string("%YAML:1.0\n---\n") + kCamera + R"(
+solver: iterative
+background: { type: color, color: [0.1, 0.2, 0.3] }
+objects:
+  - { type: sphere, radius: 0.03, translate: [0.1, 0, 0], color: [1, 0, 0] }
+  - { file: meshes/bunny.ply, scale: 2 }
+)";
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(ParseScene(text, "/data/scenes", s, error)) << error;
+  EXPECT_EQ(s.solver, SolverType::Iterative);
+  EXPECT_EQ(s.background.type, "color");
+  EXPECT_DOUBLE_EQ(s.background.color.z(), 0.3);
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.objects[0].type, "sphere");
+  EXPECT_DOUBLE_EQ(s.objects[0].radius, 0.03);
+  EXPECT_EQ(s.objects[1].type, "mesh");
+  EXPECT_EQ(s.objects[1].file, "/data/scenes/meshes/bunny.ply");
+  EXPECT_EQ(s.objects[1].scale, Vec3(2, 2, 2));
+}
+
+TEST(SceneDescription, ErrorsNameTheKey)
+{
+  struct Case
+  {
+    std::string body;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+    { "objects: [ { type: teapot } ]", "teapot" },
+    { "objects: [ { type: mesh } ]", "file" },
+    { "objects: [ { type: box, color: [2, 0, 0] } ]", "color" },
+    { "objects: [ { type: box, opacity: 1.5 } ]", "opacity" },
+    { "objects: [ { type: box, resolution: 0 } ]", "resolution" },
+    { "objects: [ { type: box, size: [1, -1, 1] } ]", "positive" },
+    { "objects: [ { type: box, translate: [1, 2] } ]", "translate" },
+    { "solver: magic", "solver" },
+    { "background: { type: video }", "background" },
+    { "objects: { type: box }", "sequence" },
+  };
+  for (const Case& c : cases)
+  {
+    SceneDescription s;
+    std::string error;
+    const std::string text = std::string("%YAML:1.0\n---\n") + kCamera + c.body + "\n";
+    EXPECT_FALSE(ParseScene(text, "", s, error)) << c.body;
+    EXPECT_NE(error.find(c.expected), std::string::npos) << "'" << error << "' lacks '"
+                                                         << c.expected << "'";
+  }
+  SceneDescription s;
+  std::string error;
+  EXPECT_FALSE(ParseScene("%YAML:1.0\n---\nobjects: []\n", "", s, error));
+  EXPECT_NE(error.find("camera"), std::string::npos);
+}
+
+TEST(SceneDescription, CalibrationFileRelativeToTheScene)
+{
+  const std::string dir = ::testing::TempDir();
+  const std::string calib = dir + "/catar_scene_calib.yaml";
+  std::ofstream(calib) << "%YAML:1.0\n---\nimage_width: 64\nimage_height: 48\n"
+                          "camera_matrix: [60, 0, 31.5, 0, 60, 23.5, 0, 0, 1]\n"
+                          "mirror: { center: [0, 0, 0.2], radius: 0.05 }\n";
+  const std::string scenePath = dir + "/catar_scene.yaml";
+  std::ofstream(scenePath) << "%YAML:1.0\n---\ncamera: catar_scene_calib.yaml\n";
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(LoadScene(scenePath, s, error)) << error;
+  EXPECT_EQ(s.camera.intrinsics.width, 64);
+  std::remove(calib.c_str());
+  std::remove(scenePath.c_str());
+}

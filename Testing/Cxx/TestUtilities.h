@@ -1,0 +1,28 @@
+// Helpers shared by the VTK tests.
+#ifndef catarTestUtilities_h
+#define catarTestUtilities_h
+
+#include "vtkCommand.h"
+#include "vtkObject.h"
+
+#include <string>
+
+namespace catar_test
+{
+/// Counts the error events of the objects it observes and keeps the last message.
+class ErrorCounter : public vtkCommand
+{
+public:
+  static ErrorCounter* New() { return new ErrorCounter; }
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    ++this->Count;
+    this->Last = callData ? static_cast<const char*>(callData) : "";
+  }
+  void Watch(vtkObject* object) { object->AddObserver(vtkCommand::ErrorEvent, this); }
+  int Count = 0;
+  std::string Last;
+};
+} // namespace catar_test
+
+#endif

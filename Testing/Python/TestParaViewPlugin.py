@@ -1,0 +1,59 @@
+"""Loads the CatadioptricAR ParaView plugin in pvpython and renders through its proxies:
+environment frame + sphere -> projection -> painter sort -> compositor."""
+
+import os
+import sys
+import tempfile
+
+from paraview import servermanager
+from paraview.simple import (CatadioptricCompositor, CatadioptricEnvironmentSource,
+                             CatadioptricPainterSort, CatadioptricProjection, LoadPlugin,
+                             Sphere)
+
+plugin = sys.argv[1]
+
+CALIBRATION = """%YAML:1.0
+---
+image_width: 320
+image_height: 240
+camera_matrix: [ 240.0, 0.0, 159.5, 0.0, 240.0, 119.5, 0.0, 0.0, 1.0 ]
+mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
+world_to_camera: [ 1, 0, 0, 0,  0, 0, -1, 1.0,  0, 1, 0, 0.14,  0, 0, 0, 1 ]
+"""
+
+
+def main():
+    LoadPlugin(plugin, remote=False, ns=globals())
+    with tempfile.TemporaryDirectory() as d:
+        calib = os.path.join(d, "calibration.yaml")
+        with open(calib, "w") as f:
+            f.write(CALIBRATION)
+        sphere = Sphere(Center=[0.06, -0.32, 0.92], Radius=0.03, ThetaResolution=32, PhiResolution=16)
+        projection = CatadioptricProjection(Input=sphere, CalibrationFileName=calib)
+        projection.Solver = 1
+        sort = CatadioptricPainterSort(Input=projection, DropInvisibleCells=1)
+        frame = CatadioptricEnvironmentSource(CalibrationFileName=calib, Samples=1)
+        compositor = CatadioptricCompositor(Frame=frame, Input=[sort])
+        compositor.ColorArrayName = ""
+        compositor.Color = [1.0, 0.0, 1.0]
+        compositor.UpdatePipeline()
+
+        image = servermanager.Fetch(compositor)
+        dims = image.GetDimensions()
+        assert dims == (320, 240, 1), dims
+        scalars = image.GetPointData().GetScalars()
+        assert scalars.GetNumberOfComponents() == 4
+        magenta = 0
+        for i in range(scalars.GetNumberOfTuples()):
+            if scalars.GetTuple4(i) == (255.0, 0.0, 255.0, 255.0):
+                magenta += 1
+        # The sphere covers a disc of some hundreds of pixels, not the whole image.
+        assert 100 < magenta < dims[0] * dims[1] // 4, magenta
+        projected = servermanager.Fetch(projection)
+        assert projected.GetPointData().GetArray("ImageCoordinates") is not None
+        assert projected.GetCellData().GetArray("CentroidDepth") is not None
+    print("ParaView plugin: %d magenta pixels; 1 passed, 0 failed" % magenta)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,140 @@
+"""Builds the whole pipeline from Python: camera, a sphere, projection, painter sort and
+compositing onto a synthesised frame, and checks the picture against the camera's own
+projection."""
+
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+import catadioptricar as car
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+
+def demo_camera():
+    cam = car.vtkCatadioptricCamera()
+    cam.SetImageWidth(320)
+    cam.SetImageHeight(240)
+    cam.SetFocalLength(240, 240)
+    cam.SetPrincipalPoint(159.5, 119.5)
+    cam.SetMirrorCenter(0, 0, 0.14)
+    cam.SetMirrorRadius(0.05)
+    # camera at world (0, -0.14, 1) looking along world +y, image up = world +z
+    cam.SetWorldToCameraElements([1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1])
+    return cam
+
+
+def pixel(image, x, y):
+    """RGBA of pixel (x right, y down) of a VTK image (row 0 at the bottom)."""
+    w, h, _ = image.GetDimensions()
+    rgba = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(h, w, 4)
+    return tuple(int(v) for v in rgba[h - 1 - int(round(y)), int(round(x))])
+
+
+class PipelineTest(unittest.TestCase):
+    def test_camera_projection_and_back_projection(self):
+        cam = demo_camera()
+        self.assertTrue(cam.IsValid(), cam.GetLastError())
+        px, mp = [0.0, 0.0], [0.0, 0.0, 0.0]
+        status = cam.ProjectWorldPoint([0.1, -0.3, 0.95], px, mp)
+        self.assertEqual(status, car.vtkCatadioptricCamera.VALID)
+        origin, direction = [0.0] * 3, [0.0] * 3
+        self.assertEqual(cam.BackProjectPixel(px, origin, direction), car.vtkCatadioptricCamera.VALID)
+        # The reflected ray passes through the point.
+        p = [0.1, -0.3, 0.95]
+        v = [p[i] - origin[i] for i in range(3)]
+        cross = [v[1] * direction[2] - v[2] * direction[1],
+                 v[2] * direction[0] - v[0] * direction[2],
+                 v[0] * direction[1] - v[1] * direction[0]]
+        self.assertLess(math.sqrt(sum(c * c for c in cross)), 1e-9)
+        # Inside the mirror: a status, no NaN.
+        self.assertEqual(cam.ProjectWorldPoint([0, 0, 1.0], px, mp), car.vtkCatadioptricCamera.INSIDE_MIRROR)
+        self.assertEqual(car.vtkCatadioptricCamera.GetStatusName(2), "inside-mirror")
+
+    def test_calibration_round_trip(self):
+        cam = demo_camera()
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "calibration.yaml")
+            self.assertTrue(cam.Save(path))
+            other = car.vtkCatadioptricCamera()
+            self.assertTrue(other.Load(path), other.GetLastError())
+            self.assertEqual(other.GetImageWidth(), 320)
+            self.assertAlmostEqual(other.GetMirrorRadius(), 0.05)
+
+    def test_pipeline_draws_the_sphere_where_it_projects(self):
+        cam = demo_camera()
+        centre = [0.06, -0.32, 0.92]
+        sphere = vtkSphereSource()
+        sphere.SetCenter(centre)
+        sphere.SetRadius(0.03)
+        sphere.SetThetaResolution(32)
+        sphere.SetPhiResolution(16)
+
+        projection = car.vtkCatadioptricProjection()
+        projection.SetCamera(cam)
+        projection.SetInputConnection(sphere.GetOutputPort())
+        sort = car.vtkCatadioptricPainterSort()
+        sort.SetInputConnection(projection.GetOutputPort())
+        sort.DropInvisibleCellsOn()
+        frame = car.vtkCatadioptricEnvironmentSource()
+        frame.SetCamera(cam)
+        frame.SetSamples(1)
+        compositor = car.vtkCatadioptricCompositor()
+        compositor.SetFrameConnection(frame.GetOutputPort())
+        compositor.AddMeshConnection(sort.GetOutputPort())
+        compositor.SetColor(1.0, 0.0, 1.0)
+        compositor.Update()
+
+        image = compositor.GetOutput()
+        self.assertEqual(image.GetDimensions(), (320, 240, 1))
+        self.assertGreater(compositor.GetNumberOfDrawnTriangles(), 0)
+        px, mp = [0.0, 0.0], [0.0] * 3
+        self.assertEqual(cam.ProjectWorldPoint(centre, px, mp), car.vtkCatadioptricCamera.VALID)
+        self.assertEqual(pixel(image, *px), (255, 0, 255, 255))
+        # Far from the sphere's image, the frame shows through (not magenta).
+        self.assertNotEqual(pixel(image, 5, 5)[:3], (255, 0, 255))
+        # Moving the camera re-executes the per-frame stages.
+        cam.SetMirrorRadius(0.045)
+        compositor.Update()
+        self.assertEqual(cam.ProjectWorldPoint(centre, px, mp), car.vtkCatadioptricCamera.VALID)
+        self.assertEqual(pixel(compositor.GetOutput(), *px), (255, 0, 255, 255))
+
+    def test_scene_renderer_demo(self):
+        renderer = car.vtkCatadioptricSceneRenderer()
+        text = car.vtkCatadioptricSceneRenderer.GetDemoSceneText()
+        text = text.replace("output: { width: 1328, height: 1048 }", "output: { width: 332, height: 262 }")
+        text = text.replace("samples: 2", "samples: 1")
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "scene.yaml")
+            with open(path, "w") as f:
+                f.write(text)
+            renderer.SetSceneFileName(path)
+            self.assertTrue(renderer.Render(), renderer.GetLastError())
+            self.assertEqual(renderer.GetOutput().GetDimensions(), (332, 262, 1))
+            self.assertGreater(renderer.GetNumberOfTriangles(), 1000)
+            names = [renderer.GetStageName(i) for i in range(renderer.GetNumberOfStages())]
+            self.assertEqual(names, ["scene", "meshes", "background", "projection", "sort", "composite"])
+            png = os.path.join(d, "out.png")
+            self.assertTrue(renderer.WritePNG(png))
+            self.assertGreater(os.path.getsize(png), 1000)
+
+    def test_bad_scene_reports_an_error(self):
+        renderer = car.vtkCatadioptricSceneRenderer()
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "bad.yaml")
+            with open(path, "w") as f:
+                f.write("%YAML:1.0\n---\nobjects: []\n")
+            renderer.SetSceneFileName(path)
+            renderer.GlobalWarningDisplayOff()
+            try:
+                self.assertFalse(renderer.Render())
+            finally:
+                renderer.GlobalWarningDisplayOn()
+            self.assertIn("camera", renderer.GetLastError())
+
+
+if __name__ == "__main__":
+    result = unittest.main(exit=False, verbosity=2).result
+    sys.exit(0 if result.wasSuccessful() and result.testsRun > 0 else 1)
