@@ -73,6 +73,11 @@ void vtkCatadioptricCamera::SetWorldToCamera(vtkMatrix4x4* matrix)
   this->Modified();
 }
 
+vtkMatrix4x4* vtkCatadioptricCamera::GetWorldToCamera()
+{
+  return this->WorldToCamera;
+}
+
 void vtkCatadioptricCamera::SetWorldToCameraElements(const double elements[16])
 {
   this->WorldToCamera->DeepCopy(elements);

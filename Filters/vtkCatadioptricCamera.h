@@ -78,8 +78,13 @@ public:
 
   ///@{
   /// OpenCV distortion coefficients k1, k2, p1, p2, k3.
-  vtkSetVector5Macro(Distortion, double);
-  vtkGetVector5Macro(Distortion, double);
+  vtkSetVectorMacro(Distortion, double, 5);
+  void SetDistortion(double k1, double k2, double p1, double p2, double k3)
+  {
+    const double d[5] = { k1, k2, p1, p2, k3 };
+    this->SetDistortion(d);
+  }
+  vtkGetVectorMacro(Distortion, double, 5);
   ///@}
 
   ///@{
@@ -93,7 +98,7 @@ public:
   ///@{
   /// World-to-camera pose (p_camera = M p_world). The matrix is copied.
   void SetWorldToCamera(vtkMatrix4x4* matrix);
-  vtkMatrix4x4* GetWorldToCamera() { return this->WorldToCamera; }
+  vtkMatrix4x4* GetWorldToCamera();
   /// The pose as 16 numbers, row-major (for ParaView and scripts).
   void SetWorldToCameraElements(const double elements[16]);
   void GetWorldToCameraElements(double elements[16]);

@@ -314,21 +314,21 @@ background: { type: environment, samples: 2 }
 objects:
   - name: parallelepiped
     type: box
-    size: [ 0.22, 0.10, 0.08 ]
+    size: [ 0.30, 0.12, 0.09 ]
     resolution: 24
-    translate: [ 0.12, -0.42, 0.86 ]
-    rotate: [ 0.0, 0.0, 25.0 ]
+    translate: [ 0.14, -0.22, 0.87 ]
+    rotate: [ 0.0, 0.0, 30.0 ]
     face_colors: 1
   - name: torus
     type: torus
-    radius: 0.07
+    radius: 0.075
     tube_radius: 0.025
     resolution: 48
-    translate: [ -0.17, -0.32, 1.12 ]
+    translate: [ -0.15, -0.22, 1.1 ]
     rotate: [ 70.0, 0.0, 20.0 ]
     color: [ 0.95, 0.55, 0.1 ]
     pattern: checker
-    pattern_size: 0.02
+    pattern_size: 0.025
 )";
 }
 

@@ -9,6 +9,7 @@
 #include "vtkCatadioptricProjection.h"
 #include "vtkCellData.h"
 #include "vtkCylinderSource.h"
+#include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkImageReader2Factory.h"
@@ -65,7 +66,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& file)
   }
   const std::string ext = vtksys::SystemTools::LowerCase(
     vtksys::SystemTools::GetFilenameLastExtension(file));
-  vtkSmartPointer<vtkPolyDataAlgorithm> reader;
+  vtkSmartPointer<vtkAlgorithm> reader;
   if (ext == ".ply")
   {
     auto r = vtkSmartPointer<vtkPLYReader>::New();
@@ -102,7 +103,7 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& file)
       file);
   }
   reader->Update();
-  vtkSmartPointer<vtkPolyData> out = reader->GetOutput();
+  vtkSmartPointer<vtkPolyData> out = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (!out || out->GetNumberOfPolys() + out->GetNumberOfStrips() == 0)
   {
     throw std::runtime_error("no surface read from " + file);

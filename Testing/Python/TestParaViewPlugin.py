@@ -6,9 +6,7 @@ import sys
 import tempfile
 
 from paraview import servermanager
-from paraview.simple import (CatadioptricCompositor, CatadioptricEnvironmentSource,
-                             CatadioptricPainterSort, CatadioptricProjection, LoadPlugin,
-                             Sphere)
+from paraview import simple
 
 plugin = sys.argv[1]
 
@@ -23,7 +21,13 @@ world_to_camera: [ 1, 0, 0, 0,  0, 0, -1, 1.0,  0, 1, 0, 0.14,  0, 0, 0, 1 ]
 
 
 def main():
-    LoadPlugin(plugin, remote=False, ns=globals())
+    simple.LoadPlugin(plugin, remote=False)
+    # The plugin's proxies are now in paraview.simple, named after their labels.
+    Sphere = simple.Sphere
+    CatadioptricProjection = simple.CatadioptricProjection
+    CatadioptricPainterSort = simple.CatadioptricPainterSort
+    CatadioptricEnvironment = simple.CatadioptricEnvironment
+    CatadioptricCompositor = simple.CatadioptricCompositor
     with tempfile.TemporaryDirectory() as d:
         calib = os.path.join(d, "calibration.yaml")
         with open(calib, "w") as f:
@@ -32,7 +36,7 @@ def main():
         projection = CatadioptricProjection(Input=sphere, CalibrationFileName=calib)
         projection.Solver = 1
         sort = CatadioptricPainterSort(Input=projection, DropInvisibleCells=1)
-        frame = CatadioptricEnvironmentSource(CalibrationFileName=calib, Samples=1)
+        frame = CatadioptricEnvironment(CalibrationFileName=calib, Samples=1)
         compositor = CatadioptricCompositor(Frame=frame, Input=[sort])
         compositor.ColorArrayName = ""
         compositor.Color = [1.0, 0.0, 1.0]
@@ -47,8 +51,18 @@ def main():
         for i in range(scalars.GetNumberOfTuples()):
             if scalars.GetTuple4(i) == (255.0, 0.0, 255.0, 255.0):
                 magenta += 1
-        # The sphere covers a disc of some hundreds of pixels, not the whole image.
-        assert 100 < magenta < dims[0] * dims[1] // 4, magenta
+        # The sphere covers a small disc: some pixels, far from the whole image.
+        assert 20 < magenta < dims[0] * dims[1] // 20, magenta
+        # ... around the pixel where the camera projects its centre (the Python wrapping of the
+        # same modules gives the projection).
+        import catadioptricar as car
+        camera = car.vtkCatadioptricCamera()
+        assert camera.Load(calib), camera.GetLastError()
+        px, mp = [0.0, 0.0], [0.0, 0.0, 0.0]
+        assert camera.ProjectWorldPoint([0.06, -0.32, 0.92], px, mp) == 0
+        x, y = int(round(px[0])), int(round(px[1]))
+        centre = scalars.GetTuple4((dims[1] - 1 - y) * dims[0] + x)
+        assert centre == (255.0, 0.0, 255.0, 255.0), (px, centre)
         projected = servermanager.Fetch(projection)
         assert projected.GetPointData().GetArray("ImageCoordinates") is not None
         assert projected.GetCellData().GetArray("CentroidDepth") is not None

@@ -1,0 +1,356 @@
+// CatadioptricAR Core: CPU triangle rasteriser (see Rasterizer.h for the conventions).
+//
+// Algorithm: the vertices are snapped to the 1/256 grid (64-bit integers) and the winding is
+// normalised so that the doubled signed area A = (x1-x0)(y2-y0) - (y1-y0)(x2-x0) is positive
+// (clockwise on screen, since y points down). For the directed edge a->b the edge function
+//   E_ab(p) = (bx-ax)(py-ay) - (by-ay)(px-ax)
+// is then positive on the interior side. With this winding the geometric definitions of the header
+// become: top edge <=> (by == ay and bx > ax); left edge <=> by < ay. A pixel centre p is covered
+// iff for all three edges E(p) > 0, or E(p) == 0 and the edge is top or left; equivalently
+// E(p) - bias >= 0 with bias = 0 for top/left edges and 1 otherwise.
+//
+// Range: |coordinate| <= 2^20 px = 2^28 grid units, differences <= 2^29, products <= 2^58, so E
+// (a difference of two products, <= 2^59 in magnitude) is exact in int64 everywhere in the
+// bounding box. The edge functions are stepped incrementally along rows and columns.
+//
+// Attributes (r, g, b, a, depth) are planes c(x, y) evaluated in double at each covered pixel from
+// the row start value (no accumulation across rows).
+#include "Rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace catar
+{
+namespace
+{
+constexpr std::int64_t kOne = std::int64_t(1) << kRasterSubPixelBits;
+
+bool IsFinite(const RasterVertex& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.r) && std::isfinite(v.g) &&
+    std::isfinite(v.b) && std::isfinite(v.a) && std::isfinite(v.depth);
+}
+
+bool InGuardBand(const RasterVertex& v)
+{
+  return std::fabs(v.x) <= kRasterGuardBand && std::fabs(v.y) <= kRasterGuardBand;
+}
+
+// Nearest grid value, exact halves rounded up.
+std::int64_t Snap(double c)
+{
+  return static_cast<std::int64_t>(std::floor(c * static_cast<double>(kOne) + 0.5));
+}
+
+// floor(a / kOne) and ceil(a / kOne) for any sign of a.
+std::int64_t FloorToPixel(std::int64_t a)
+{
+  std::int64_t q = a / kOne;
+  if (a % kOne < 0)
+  {
+    --q;
+  }
+  return q;
+}
+
+std::int64_t CeilToPixel(std::int64_t a)
+{
+  return -FloorToPixel(-a);
+}
+
+float Clamp01(float v)
+{
+  return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
+}
+
+float Clamp01(double v)
+{
+  return static_cast<float>(v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v));
+}
+
+// v >= 0 (up to rounding noise); round to nearest and clamp to 255.
+std::uint8_t ToByte(float v)
+{
+  const int i = static_cast<int>(v + 0.5f);
+  return static_cast<std::uint8_t>(i > 255 ? 255 : (i < 0 ? 0 : i));
+}
+
+// Source colour pre-scaled to 0..255 and premultiplied by alpha, plus the destination weight.
+struct BlendSource
+{
+  float r, g, b, a; // 255 * c * alpha (a: 255 * alpha)
+  float keep;       // 1 - alpha
+};
+
+BlendSource MakeSource(float r, float g, float b, float a)
+{
+  const float sa = 255.0f * a;
+  return BlendSource{ r * sa, g * sa, b * sa, sa, 1.0f - a };
+}
+
+void Blend(std::uint8_t* p, const BlendSource& s)
+{
+  p[0] = ToByte(s.r + static_cast<float>(p[0]) * s.keep);
+  p[1] = ToByte(s.g + static_cast<float>(p[1]) * s.keep);
+  p[2] = ToByte(s.b + static_cast<float>(p[2]) * s.keep);
+  p[3] = ToByte(s.a + static_cast<float>(p[3]) * s.keep);
+}
+
+// A linear function over the bounding box: c(x, y) = origin + dx (x - xMin) + dy (y - yMin).
+struct Plane
+{
+  double origin = 0; // value at (xMin, yMin)
+  double dx = 0;     // per pixel to the right
+  double dy = 0;     // per row down
+};
+
+struct Setup
+{
+  int xMin, xMax, yMin, yMax; // inclusive pixel range to scan (already clipped)
+  std::int64_t w[3];          // biased edge functions at (xMin, yMin)
+  std::int64_t stepX[3];      // change per pixel to the right
+  std::int64_t stepY[3];      // change per row down
+  Plane colour[4];            // r, g, b, a (used when not flat)
+  Plane depth;                // used with a depth buffer
+  BlendSource flat;           // used when flat
+  std::uint8_t flatBytes[4];  // opaque flat colour
+  bool flatOpaque;            // flat and alpha == 1
+};
+
+// Scans the bounding box; returns true when at least one pixel centre is covered.
+template <bool kFlat, bool kDepth>
+bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
+{
+  bool any = false;
+  std::int64_t r0 = s.w[0], r1 = s.w[1], r2 = s.w[2];
+  for (int y = s.yMin; y <= s.yMax; ++y, r0 += s.stepY[0], r1 += s.stepY[1], r2 += s.stepY[2])
+  {
+    std::int64_t w0 = r0, w1 = r1, w2 = r2;
+    std::uint8_t* row = img.pixel(0, y);
+    float* zRow = kDepth ? depthView->at(0, y) : nullptr;
+    const double rowIndex = static_cast<double>(y - s.yMin);
+    double cRow[4] = { 0, 0, 0, 0 };
+    if (!kFlat)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        cRow[c] = s.colour[c].origin + s.colour[c].dy * rowIndex;
+      }
+    }
+    const double zRowValue = kDepth ? s.depth.origin + s.depth.dy * rowIndex : 0.0;
+    bool inSpan = false;
+    for (int x = s.xMin; x <= s.xMax; ++x, w0 += s.stepX[0], w1 += s.stepX[1], w2 += s.stepX[2])
+    {
+      if ((w0 | w1 | w2) < 0)
+      {
+        if (inSpan)
+        {
+          break; // convex: the span of this row is over
+        }
+        continue;
+      }
+      inSpan = true;
+      any = true;
+      const double colIndex = static_cast<double>(x - s.xMin);
+      if (kDepth)
+      {
+        const float z = static_cast<float>(zRowValue + s.depth.dx * colIndex);
+        float* zp = zRow + x;
+        if (!(z < *zp))
+        {
+          continue;
+        }
+        *zp = z;
+      }
+      std::uint8_t* p = row + 4 * static_cast<std::ptrdiff_t>(x);
+      if (kFlat)
+      {
+        if (s.flatOpaque)
+        {
+          std::memcpy(p, s.flatBytes, 4);
+        }
+        else
+        {
+          Blend(p, s.flat);
+        }
+      }
+      else
+      {
+        const float r = Clamp01(cRow[0] + s.colour[0].dx * colIndex);
+        const float g = Clamp01(cRow[1] + s.colour[1].dx * colIndex);
+        const float b = Clamp01(cRow[2] + s.colour[2].dx * colIndex);
+        const float a = Clamp01(cRow[3] + s.colour[3].dx * colIndex);
+        Blend(p, MakeSource(r, g, b, a));
+      }
+    }
+  }
+  return any;
+}
+}
+
+const char* toString(RasterResult result)
+{
+  switch (result)
+  {
+    case RasterResult::Drawn:
+      return "Drawn";
+    case RasterResult::Empty:
+      return "Empty";
+    case RasterResult::Degenerate:
+      return "Degenerate";
+    case RasterResult::OutsideGuardBand:
+      return "OutsideGuardBand";
+    case RasterResult::InvalidInput:
+      return "InvalidInput";
+  }
+  return "Unknown";
+}
+
+RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
+  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth)
+{
+  if (!target.data || target.width <= 0 || target.height <= 0 || !IsFinite(v0) || !IsFinite(v1) ||
+    !IsFinite(v2))
+  {
+    return RasterResult::InvalidInput;
+  }
+  if (depth && (!depth->data || depth->width < target.width || depth->height < target.height))
+  {
+    return RasterResult::InvalidInput;
+  }
+  if (!InGuardBand(v0) || !InGuardBand(v1) || !InGuardBand(v2))
+  {
+    return RasterResult::OutsideGuardBand;
+  }
+
+  // Snap and normalise the winding to a positive doubled area.
+  const RasterVertex* v[3] = { &v0, &v1, &v2 };
+  std::int64_t X[3], Y[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    X[i] = Snap(v[i]->x);
+    Y[i] = Snap(v[i]->y);
+  }
+  std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
+  if (area == 0)
+  {
+    return RasterResult::Degenerate;
+  }
+  if (area < 0)
+  {
+    std::swap(v[1], v[2]);
+    std::swap(X[1], X[2]);
+    std::swap(Y[1], Y[2]);
+    area = -area;
+  }
+
+  // Bounding box of the covered pixel centres, clipped to the clip rectangle and the image.
+  const int cx0 = std::max(clip.x0, 0);
+  const int cy0 = std::max(clip.y0, 0);
+  const int cx1 = std::min(clip.x1, target.width);  // exclusive
+  const int cy1 = std::min(clip.y1, target.height); // exclusive
+  const std::int64_t bx0 = CeilToPixel(std::min({ X[0], X[1], X[2] }));
+  const std::int64_t by0 = CeilToPixel(std::min({ Y[0], Y[1], Y[2] }));
+  const std::int64_t bx1 = FloorToPixel(std::max({ X[0], X[1], X[2] }));
+  const std::int64_t by1 = FloorToPixel(std::max({ Y[0], Y[1], Y[2] }));
+  Setup s;
+  s.xMin = static_cast<int>(std::max<std::int64_t>(bx0, cx0));
+  s.yMin = static_cast<int>(std::max<std::int64_t>(by0, cy0));
+  s.xMax = static_cast<int>(std::min<std::int64_t>(bx1, cx1 - 1));
+  s.yMax = static_cast<int>(std::min<std::int64_t>(by1, cy1 - 1));
+  if (s.xMin > s.xMax || s.yMin > s.yMax)
+  {
+    return RasterResult::Empty;
+  }
+
+  // Edge i is the one opposite vertex i: a = vertex i+1, b = vertex i+2.
+  const std::int64_t px = static_cast<std::int64_t>(s.xMin) * kOne;
+  const std::int64_t py = static_cast<std::int64_t>(s.yMin) * kOne;
+  for (int i = 0; i < 3; ++i)
+  {
+    const int a = (i + 1) % 3;
+    const int b = (i + 2) % 3;
+    const std::int64_t ex = X[b] - X[a];
+    const std::int64_t ey = Y[b] - Y[a];
+    const bool topLeft = ey < 0 || (ey == 0 && ex > 0);
+    s.w[i] = ex * (py - Y[a]) - ey * (px - X[a]) - (topLeft ? 0 : 1);
+    s.stepX[i] = -ey * kOne;
+    s.stepY[i] = ex * kOne;
+  }
+
+  // Attribute planes in pixel units, relative to the (snapped) vertex 0.
+  const double inv = 1.0 / static_cast<double>(kOne);
+  const double x10 = static_cast<double>(X[1] - X[0]) * inv;
+  const double y10 = static_cast<double>(Y[1] - Y[0]) * inv;
+  const double x20 = static_cast<double>(X[2] - X[0]) * inv;
+  const double y20 = static_cast<double>(Y[2] - Y[0]) * inv;
+  const double invArea = 1.0 / (x10 * y20 - y10 * x20);
+  const double ox = static_cast<double>(s.xMin) - static_cast<double>(X[0]) * inv;
+  const double oy = static_cast<double>(s.yMin) - static_cast<double>(Y[0]) * inv;
+  auto makePlane = [&](double c0, double c1, double c2)
+  {
+    const double d1 = c1 - c0;
+    const double d2 = c2 - c0;
+    Plane p;
+    p.dx = (d1 * y20 - d2 * y10) * invArea;
+    p.dy = (d2 * x10 - d1 * x20) * invArea;
+    p.origin = c0 + p.dx * ox + p.dy * oy;
+    return p;
+  };
+
+  float col[3][4];
+  for (int i = 0; i < 3; ++i)
+  {
+    col[i][0] = Clamp01(v[i]->r);
+    col[i][1] = Clamp01(v[i]->g);
+    col[i][2] = Clamp01(v[i]->b);
+    col[i][3] = Clamp01(v[i]->a);
+  }
+  bool flat = true;
+  for (int c = 0; c < 4; ++c)
+  {
+    flat = flat && col[0][c] == col[1][c] && col[0][c] == col[2][c];
+  }
+  if (flat)
+  {
+    s.flat = MakeSource(col[0][0], col[0][1], col[0][2], col[0][3]);
+    s.flatOpaque = col[0][3] == 1.0f;
+    s.flatBytes[0] = ToByte(s.flat.r);
+    s.flatBytes[1] = ToByte(s.flat.g);
+    s.flatBytes[2] = ToByte(s.flat.b);
+    s.flatBytes[3] = 255;
+  }
+  else
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      s.colour[c] = makePlane(col[0][c], col[1][c], col[2][c]);
+    }
+    s.flatOpaque = false;
+  }
+  if (depth)
+  {
+    s.depth = makePlane(v[0]->depth, v[1]->depth, v[2]->depth);
+  }
+
+  bool any;
+  if (flat)
+  {
+    any = depth ? Scan<true, true>(target, depth, s) : Scan<true, false>(target, depth, s);
+  }
+  else
+  {
+    any = depth ? Scan<false, true>(target, depth, s) : Scan<false, false>(target, depth, s);
+  }
+  return any ? RasterResult::Drawn : RasterResult::Empty;
+}
+
+RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
+  const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth)
+{
+  return rasterizeTriangle(
+    target, v0, v1, v2, PixelRect{ 0, 0, target.width, target.height }, depth);
+}
+}

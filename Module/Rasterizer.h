@@ -1,0 +1,128 @@
+// CatadioptricAR Core: a dependency-free CPU triangle rasteriser (RGBA8 target, optional depth).
+//
+// Conventions
+//  - Pixel (x, y): x to the right, y DOWN (row 0 is the top row, as OpenCV). The centre of pixel
+//    (x, y) is at the real coordinates (x, y); the pixel covers [x-0.5, x+0.5] x [y-0.5, y+0.5].
+//  - Vertex positions are snapped to fixed point with 8 sub-pixel bits (1/256 px), rounding to the
+//    nearest grid value with exact halves rounded up (towards +inf): X = floor(256 x + 0.5).
+//    All coverage decisions are then exact 64-bit integer computations.
+//  - Coverage: a pixel is drawn iff its centre lies inside the (snapped) triangle. A centre exactly
+//    on an edge is drawn only if that edge is a TOP or a LEFT edge (the Direct3D top-left rule):
+//      * top edge:  an exactly horizontal edge with the triangle's interior below it (larger y),
+//                   i.e. the third vertex has a larger y than the edge;
+//      * left edge: a non-horizontal edge with the triangle's interior on its +x side, i.e. the
+//                   third vertex lies strictly to the right of the edge's line at the same y.
+//    Both definitions are geometric and so independent of the winding. A centre on a vertex is
+//    drawn only if both edges meeting there are top or left edges. Consequently two triangles that
+//    share an edge (same snapped end points, interiors on opposite sides) never both draw, and
+//    never both miss, a pixel centre on that edge; a fan of triangles around a shared vertex covers
+//    each pixel centre of its union exactly once.
+//  - Colours are RGBA in [0, 1] (vertex values outside are clamped before interpolation),
+//    interpolated linearly in screen space (Gouraud) and composited source-over onto the target:
+//      out.rgb = src.rgb * a + dst.rgb * (1 - a),  out.a = a + dst.a * (1 - a),
+//    computed on the 0..255 scale, rounded to nearest and clamped. a == 1 overwrites rgb with
+//    round(255 * src.rgb) and alpha with 255.
+#ifndef catarRasterizer_h
+#define catarRasterizer_h
+
+#include <cstddef>
+#include <cstdint>
+
+namespace catar
+{
+/// Number of sub-pixel bits of the fixed-point vertex positions (1/256 px).
+constexpr int kRasterSubPixelBits = 8;
+
+/// Guard band: vertex coordinates must satisfy |x|, |y| <= kRasterGuardBand pixels.
+constexpr double kRasterGuardBand = static_cast<double>(1 << 20);
+
+/// An RGBA8 image the rasteriser draws into (not owned). Pixel (x, y): x right, y DOWN (row 0 =
+/// top row, as OpenCV). rowStride is the byte offset from row y to row y+1 and MAY BE NEGATIVE, so
+/// a bottom-up vtkImageData buffer is addressed with data = start of its last row and rowStride =
+/// -4 * width. Pixels are 4 consecutive bytes R, G, B, A.
+struct ImageView
+{
+  std::uint8_t* data = nullptr; ///< address of pixel (0, 0)
+  int width = 0;                ///< number of columns
+  int height = 0;               ///< number of rows
+  std::ptrdiff_t rowStride = 0; ///< bytes from row y to row y+1 (may be negative)
+
+  /// Address of the first (R) byte of pixel (x, y); no bounds check.
+  std::uint8_t* pixel(int x, int y) const
+  {
+    return data + y * rowStride + 4 * static_cast<std::ptrdiff_t>(x);
+  }
+};
+
+/// Optional depth buffer (not owned), one float per pixel, addressed like ImageView with rowStride
+/// counted in floats (may be negative). It must be at least as large as the target image.
+struct DepthView
+{
+  float* data = nullptr;        ///< address of the depth of pixel (0, 0)
+  int width = 0;                ///< number of columns
+  int height = 0;               ///< number of rows
+  std::ptrdiff_t rowStride = 0; ///< floats from row y to row y+1 (may be negative)
+
+  /// Address of the depth of pixel (x, y); no bounds check.
+  float* at(int x, int y) const { return data + y * rowStride + static_cast<std::ptrdiff_t>(x); }
+};
+
+/// Integer clip rectangle [x0, x1) x [y0, y1) in pixels; used to split work into tiles.
+struct PixelRect
+{
+  int x0 = 0; ///< first column inside
+  int y0 = 0; ///< first row inside
+  int x1 = 0; ///< one past the last column inside
+  int y1 = 0; ///< one past the last row inside
+};
+
+/// One vertex: position in pixels (pixel (0,0) is the CENTRE of the top-left pixel), colour RGBA
+/// in [0, 1] (clamped), and depth (smaller is nearer).
+struct RasterVertex
+{
+  double x = 0;    ///< column coordinate, pixels
+  double y = 0;    ///< row coordinate, pixels (down)
+  float r = 0;     ///< red, [0, 1]
+  float g = 0;     ///< green, [0, 1]
+  float b = 0;     ///< blue, [0, 1]
+  float a = 1;     ///< opacity, [0, 1]
+  float depth = 0; ///< depth, used only with a depth buffer
+};
+
+/// Outcome of rasterizeTriangle. Checks are made in this order: InvalidInput, OutsideGuardBand,
+/// Degenerate, then Empty / Drawn.
+enum class RasterResult
+{
+  Drawn,            ///< at least one pixel centre inside the clipped image area is covered
+                    ///< (it may still have been rejected by the depth test)
+  Empty,            ///< covers no pixel centre inside the clipped image area; nothing drawn
+  Degenerate,       ///< zero area after snapping to the 1/256 grid; nothing drawn
+  OutsideGuardBand, ///< a vertex lies outside +-kRasterGuardBand pixels; nothing drawn
+  InvalidInput      ///< NaN/Inf in a vertex (position, colour or depth), a target without
+                    ///< data or with a non-positive size, or a depth buffer without data or
+                    ///< smaller than the target; nothing drawn
+};
+
+/// Name of a RasterResult value (for messages).
+const char* toString(RasterResult result);
+
+/// Draws one triangle (either winding) with colours interpolated linearly in screen space
+/// (Gouraud; equal vertex colours take a flat-shading fast path), composited source-over onto
+/// target (see the conventions above). Coverage follows the top-left rule on the 1/256 grid.
+/// depth: if non-null, the per-pixel depth (interpolated linearly in screen space from the vertex
+/// depths, stored as float) is tested -- a pixel is drawn only if it is strictly less than the
+/// stored value -- and written where drawn.
+/// clip: only pixels inside clip intersected with the image are read or written. Drawing a
+/// triangle tile by tile with clip rectangles that partition the image gives exactly the same
+/// result as drawing it once over the whole image.
+/// Thread-safe for disjoint clip rectangles; allocates nothing.
+RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
+  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip,
+  const DepthView* depth = nullptr);
+
+/// Convenience overload: clip = the whole image.
+RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
+  const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth = nullptr);
+}
+
+#endif
