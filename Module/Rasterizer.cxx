@@ -119,17 +119,71 @@ struct Setup
   bool flatOpaque;            // flat and alpha == 1
 };
 
+// Columns [lo, hi] (offsets from xMin, inclusive) of a row whose biased edge functions at xMin
+// are w, i.e. the k in [0, last] with w[i] + k * stepX[i] >= 0 for all i; false if none. Exact
+// integer arithmetic; divisions only for edges that cross the row inside the bounding box.
+bool RowSpan(const std::int64_t w[3], const std::int64_t stepX[3], std::int64_t last, int& lo,
+  int& hi)
+{
+  std::int64_t l = 0;
+  std::int64_t h = last;
+  for (int i = 0; i < 3; ++i)
+  {
+    const std::int64_t s = stepX[i];
+    if (s > 0)
+    {
+      if (w[i] < 0) // covered from k = ceil(-w / s) on
+      {
+        const std::int64_t need = -w[i];
+        if (need > s * h)
+        {
+          return false;
+        }
+        l = std::max(l, (need + s - 1) / s);
+      }
+    }
+    else if (s < 0)
+    {
+      if (w[i] < 0)
+      {
+        return false; // decreasing and already negative
+      }
+      if (w[i] < -s * h) // covered up to k = floor(w / -s)
+      {
+        h = w[i] / -s;
+      }
+    }
+    else if (w[i] < 0)
+    {
+      return false;
+    }
+  }
+  if (l > h)
+  {
+    return false;
+  }
+  lo = static_cast<int>(l);
+  hi = static_cast<int>(h);
+  return true;
+}
+
 // Scans the bounding box; returns true when at least one pixel centre is covered.
 template <bool kFlat, bool kDepth>
 bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
 {
   bool any = false;
-  std::int64_t r0 = s.w[0], r1 = s.w[1], r2 = s.w[2];
-  for (int y = s.yMin; y <= s.yMax; ++y, r0 += s.stepY[0], r1 += s.stepY[1], r2 += s.stepY[2])
+  std::int64_t w[3] = { s.w[0], s.w[1], s.w[2] };
+  const std::int64_t last = s.xMax - s.xMin;
+  for (int y = s.yMin; y <= s.yMax; ++y, w[0] += s.stepY[0], w[1] += s.stepY[1], w[2] += s.stepY[2])
   {
-    std::int64_t w0 = r0, w1 = r1, w2 = r2;
-    std::uint8_t* row = img.pixel(0, y);
-    float* zRow = kDepth ? depthView->at(0, y) : nullptr;
+    int lo, hi;
+    if (!RowSpan(w, s.stepX, last, lo, hi))
+    {
+      continue;
+    }
+    any = true;
+    std::uint8_t* row = img.pixel(s.xMin, y);
+    float* zRow = kDepth ? depthView->at(s.xMin, y) : nullptr;
     const double rowIndex = static_cast<double>(y - s.yMin);
     double cRow[4] = { 0, 0, 0, 0 };
     if (!kFlat)
@@ -140,48 +194,53 @@ bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
       }
     }
     const double zRowValue = kDepth ? s.depth.origin + s.depth.dy * rowIndex : 0.0;
-    bool inSpan = false;
-    for (int x = s.xMin; x <= s.xMax; ++x, w0 += s.stepX[0], w1 += s.stepX[1], w2 += s.stepX[2])
+    std::uint8_t* p = row + 4 * static_cast<std::ptrdiff_t>(lo);
+    if (kFlat && !kDepth && s.flatOpaque)
     {
-      if ((w0 | w1 | w2) < 0)
+      std::uint32_t packed; // local copy: stores through p may alias s
+      std::memcpy(&packed, s.flatBytes, 4);
+      for (int k = lo; k <= hi; ++k, p += 4)
       {
-        if (inSpan)
-        {
-          break; // convex: the span of this row is over
-        }
-        continue;
+        std::memcpy(p, &packed, 4);
       }
-      inSpan = true;
-      any = true;
-      const double colIndex = static_cast<double>(x - s.xMin);
+      continue;
+    }
+    const BlendSource flat = s.flat;
+    const bool opaque = s.flatOpaque;
+    std::uint32_t packed;
+    std::memcpy(&packed, s.flatBytes, 4);
+    const double zdx = s.depth.dx;
+    const double cdx[4] = { s.colour[0].dx, s.colour[1].dx, s.colour[2].dx, s.colour[3].dx };
+    for (int k = lo; k <= hi; ++k, p += 4)
+    {
+      const double col = static_cast<double>(k);
       if (kDepth)
       {
-        const float z = static_cast<float>(zRowValue + s.depth.dx * colIndex);
-        float* zp = zRow + x;
+        const float z = static_cast<float>(zRowValue + zdx * col);
+        float* zp = zRow + k;
         if (!(z < *zp))
         {
           continue;
         }
         *zp = z;
       }
-      std::uint8_t* p = row + 4 * static_cast<std::ptrdiff_t>(x);
       if (kFlat)
       {
-        if (s.flatOpaque)
+        if (opaque)
         {
-          std::memcpy(p, s.flatBytes, 4);
+          std::memcpy(p, &packed, 4);
         }
         else
         {
-          Blend(p, s.flat);
+          Blend(p, flat);
         }
       }
       else
       {
-        const float r = Clamp01(cRow[0] + s.colour[0].dx * colIndex);
-        const float g = Clamp01(cRow[1] + s.colour[1].dx * colIndex);
-        const float b = Clamp01(cRow[2] + s.colour[2].dx * colIndex);
-        const float a = Clamp01(cRow[3] + s.colour[3].dx * colIndex);
+        const float r = Clamp01(cRow[0] + cdx[0] * col);
+        const float g = Clamp01(cRow[1] + cdx[1] * col);
+        const float b = Clamp01(cRow[2] + cdx[2] * col);
+        const float a = Clamp01(cRow[3] + cdx[3] * col);
         Blend(p, MakeSource(r, g, b, a));
       }
     }

@@ -1,0 +1,125 @@
+// Forward-projection cost per point of each solver, back-projection cost per pixel, and raster
+// cost per triangle, single-threaded. Run:
+//   build/bin/BenchmarkProjection [--benchmark_out=projection.csv --benchmark_out_format=csv]
+// The counter ns_per_item is the cost of one point / pixel / triangle.
+#include "Rasterizer.h"
+#include "SceneDescription.h"
+#include "SphereProjection.h"
+
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+using namespace catar;
+
+namespace
+{
+// World points around the demo scene's objects: behind and beside the camera, 0.1-0.6 m away.
+std::vector<Vec3> ScenePoints(const CameraModel& model, size_t n)
+{
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const SphereProjector proj(model);
+  std::vector<Vec3> pts;
+  while (pts.size() < n)
+  {
+    const Vec3 p(0.35 * u(rng), -0.14 - 0.3 * (u(rng) + 1.0), 1.0 + 0.3 * u(rng));
+    if (proj.ProjectWorld(p).status == ProjectionStatus::Valid)
+    {
+      pts.push_back(p);
+    }
+  }
+  return pts;
+}
+
+void SetPerItem(benchmark::State& state, size_t itemsPerIteration)
+{
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * itemsPerIteration));
+  state.counters["ns_per_item"] = benchmark::Counter(
+    static_cast<double>(state.iterations() * itemsPerIteration),
+    benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
+}
+
+void BM_ForwardProjection(benchmark::State& state)
+{
+  const SolverType solver = state.range(0) == 0 ? SolverType::Quartic : SolverType::Iterative;
+  state.SetLabel(solver == SolverType::Quartic ? "quartic" : "iterative");
+  const CameraModel model = DemoScene().camera;
+  const SphereProjector proj(model);
+  const std::vector<Vec3> pts = ScenePoints(model, 4096);
+  for (auto _ : state)
+  {
+    for (const Vec3& p : pts)
+    {
+      benchmark::DoNotOptimize(proj.ProjectWorld(p, solver));
+    }
+  }
+  SetPerItem(state, pts.size());
+}
+BENCHMARK(BM_ForwardProjection)->Arg(0)->Arg(1);
+
+void BM_BackProjection(benchmark::State& state)
+{
+  const CameraModel model = DemoScene().camera;
+  const SphereProjector proj(model);
+  std::vector<Vec2> pixels;
+  for (int y = 0; y < model.intrinsics.height; y += 16)
+  {
+    for (int x = 0; x < model.intrinsics.width; x += 16)
+    {
+      pixels.emplace_back(x, y);
+    }
+  }
+  for (auto _ : state)
+  {
+    for (const Vec2& px : pixels)
+    {
+      benchmark::DoNotOptimize(proj.BackProjectWorld(px));
+    }
+  }
+  SetPerItem(state, pixels.size());
+}
+BENCHMARK(BM_BackProjection);
+
+void BM_RasterizeTriangle(benchmark::State& state)
+{
+  // Triangles of about `area` pixels at random places of a 1328x1048 image.
+  const double area = static_cast<double>(state.range(0));
+  const int w = 1328, h = 1048;
+  std::vector<std::uint8_t> buffer(4 * static_cast<size_t>(w) * h, 0);
+  ImageView view;
+  view.data = buffer.data();
+  view.width = w;
+  view.height = h;
+  view.rowStride = 4 * w;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> ux(0, w - 1), uy(0, h - 1), ua(0, 6.2831853);
+  const double side = std::sqrt(2.0 * area);
+  std::vector<RasterVertex> tris;
+  for (int i = 0; i < 4096; ++i)
+  {
+    const double x = ux(rng), y = uy(rng), a = ua(rng);
+    RasterVertex v0, v1, v2;
+    v0.x = x;
+    v0.y = y;
+    v1.x = x + side * std::cos(a);
+    v1.y = y + side * std::sin(a);
+    v2.x = x + side * std::cos(a + 1.5707963);
+    v2.y = y + side * std::sin(a + 1.5707963);
+    v0.r = v1.g = v2.b = 1.0f;
+    tris.insert(tris.end(), { v0, v1, v2 });
+  }
+  for (auto _ : state)
+  {
+    for (size_t i = 0; i < tris.size(); i += 3)
+    {
+      rasterizeTriangle(view, tris[i], tris[i + 1], tris[i + 2]);
+    }
+  }
+  SetPerItem(state, tris.size() / 3);
+}
+BENCHMARK(BM_RasterizeTriangle)->Arg(2)->Arg(20)->Arg(200);
+} // namespace
+
+BENCHMARK_MAIN();
