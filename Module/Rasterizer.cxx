@@ -38,10 +38,12 @@ bool InGuardBand(const RasterVertex& v)
   return std::fabs(v.x) <= kRasterGuardBand && std::fabs(v.y) <= kRasterGuardBand;
 }
 
-// Nearest grid value, exact halves rounded up.
+// Nearest grid value, exact halves rounded up: floor(256 c + 0.5) (|c| <= 2^20, so exact).
 std::int64_t Snap(double c)
 {
-  return static_cast<std::int64_t>(std::floor(c * static_cast<double>(kOne) + 0.5));
+  const double v = c * static_cast<double>(kOne) + 0.5;
+  const std::int64_t t = static_cast<std::int64_t>(v); // truncates towards zero
+  return static_cast<double>(t) > v ? t - 1 : t;
 }
 
 // floor(a / kOne) and ceil(a / kOne) for any sign of a.
@@ -111,6 +113,7 @@ struct Setup
   int xMin, xMax, yMin, yMax; // inclusive pixel range to scan (already clipped)
   std::int64_t w[3];          // biased edge functions at (xMin, yMin)
   std::int64_t stepX[3];      // change per pixel to the right
+  double invStepX[3];         // 1 / |stepX| (0 where stepX == 0)
   std::int64_t stepY[3];      // change per row down
   Plane colour[4];            // r, g, b, a (used when not flat)
   Plane depth;                // used with a depth buffer
@@ -120,40 +123,61 @@ struct Setup
 };
 
 // Columns [lo, hi] (offsets from xMin, inclusive) of a row whose biased edge functions at xMin
-// are w, i.e. the k in [0, last] with w[i] + k * stepX[i] >= 0 for all i; false if none. Exact
-// integer arithmetic; divisions only for edges that cross the row inside the bounding box.
-bool RowSpan(const std::int64_t w[3], const std::int64_t stepX[3], std::int64_t last, int& lo,
-  int& hi)
+// are w, i.e. the k in [0, last] with w[i] + k * stepX[i] >= 0 for all i; false if none. The
+// crossing of each edge is estimated in double (invStep = 1 / |stepX|) and then corrected with
+// exact integer tests, so the result is exact.
+inline bool RowSpan(const std::int64_t w[3], const std::int64_t stepX[3], const double invStep[3],
+  std::int64_t last, int& lo, int& hi)
 {
   std::int64_t l = 0;
   std::int64_t h = last;
   for (int i = 0; i < 3; ++i)
   {
     const std::int64_t s = stepX[i];
+    const std::int64_t wi = w[i];
     if (s > 0)
     {
-      if (w[i] < 0) // covered from k = ceil(-w / s) on
+      if (wi < 0) // covered from k = ceil(-w / s) on
       {
-        const std::int64_t need = -w[i];
-        if (need > s * h)
+        const double kd = static_cast<double>(-wi) * invStep[i];
+        if (kd > static_cast<double>(h) + 1.0)
         {
           return false;
         }
-        l = std::max(l, (need + s - 1) / s);
+        std::int64_t k = static_cast<std::int64_t>(kd);
+        while (wi + s * k < 0)
+        {
+          ++k;
+        }
+        while (k > 0 && wi + s * (k - 1) >= 0)
+        {
+          --k;
+        }
+        l = std::max(l, k);
       }
     }
     else if (s < 0)
     {
-      if (w[i] < 0)
+      if (wi < 0)
       {
         return false; // decreasing and already negative
       }
-      if (w[i] < -s * h) // covered up to k = floor(w / -s)
+      const double kd = static_cast<double>(wi) * invStep[i]; // covered up to k = floor(w / -s)
+      if (kd < static_cast<double>(h) + 1.0)
       {
-        h = w[i] / -s;
+        std::int64_t k = static_cast<std::int64_t>(kd);
+        while (wi + s * (k + 1) >= 0)
+        {
+          ++k;
+        }
+        while (wi + s * k < 0)
+        {
+          --k;
+        }
+        h = std::min(h, k);
       }
     }
-    else if (w[i] < 0)
+    else if (wi < 0)
     {
       return false;
     }
@@ -177,7 +201,7 @@ bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
   for (int y = s.yMin; y <= s.yMax; ++y, w[0] += s.stepY[0], w[1] += s.stepY[1], w[2] += s.stepY[2])
   {
     int lo, hi;
-    if (!RowSpan(w, s.stepX, last, lo, hi))
+    if (!RowSpan(w, s.stepX, s.invStepX, last, lo, hi))
     {
       continue;
     }
@@ -336,6 +360,7 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     const bool topLeft = ey < 0 || (ey == 0 && ex > 0);
     s.w[i] = ex * (py - Y[a]) - ey * (px - X[a]) - (topLeft ? 0 : 1);
     s.stepX[i] = -ey * kOne;
+    s.invStepX[i] = ey == 0 ? 0.0 : 1.0 / static_cast<double>(std::abs(ey) * kOne);
     s.stepY[i] = ex * kOne;
   }
 
