@@ -270,36 +270,6 @@ bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
   return this->IsValid();
 }
 
-vtkCatadioptricCamera* vtkCatadioptricCamera::Resolve(vtkCatadioptricCamera* camera,
-  const char* fileName, vtkSmartPointer<vtkCatadioptricCamera>& cache, std::string& cachedName,
-  std::string& error)
-{
-  if (camera)
-  {
-    return camera;
-  }
-  if (!fileName || !*fileName)
-  {
-    error = "No camera: call SetCamera() or set CalibrationFileName.";
-    return nullptr;
-  }
-  if (!cache || cachedName != fileName)
-  {
-    catar::CameraModel model;
-    std::string why;
-    if (!catar::LoadCalibration(fileName, model, why))
-    {
-      error = "Cannot load the calibration: " + why;
-      return nullptr;
-    }
-    vtkNew<vtkCatadioptricCamera> loaded;
-    loaded->SetModel(model);
-    cache = loaded;
-    cachedName = fileName;
-  }
-  return cache;
-}
-
 void vtkCatadioptricCamera::DeepCopy(vtkCatadioptricCamera* other)
 {
   if (other && other != this)

@@ -145,12 +145,6 @@ public:
   vtkMTimeType GetMTime() override;
 
 #ifndef __VTK_WRAP__
-  /// For filters that take a camera object or a calibration file name: returns `camera` if set,
-  /// else the camera in `cache` loaded from `fileName` (reloaded when the name changes). Returns
-  /// nullptr and says why in `error` when neither gives a camera.
-  static vtkCatadioptricCamera* Resolve(vtkCatadioptricCamera* camera, const char* fileName,
-    vtkSmartPointer<vtkCatadioptricCamera>& cache, std::string& cachedName, std::string& error);
-
   ///@{
   /// The model as the Core library sees it (C++ only).
   catar::CameraModel GetModel();

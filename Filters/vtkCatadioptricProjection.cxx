@@ -21,7 +21,6 @@
 #include <cmath>
 
 vtkStandardNewMacro(vtkCatadioptricProjection);
-vtkCxxSetObjectMacro(vtkCatadioptricProjection, Camera, vtkCatadioptricCamera);
 
 namespace
 {
@@ -103,33 +102,9 @@ struct CellDispatch
 
 vtkCatadioptricProjection::vtkCatadioptricProjection() = default;
 
-vtkCatadioptricProjection::~vtkCatadioptricProjection()
-{
-  this->SetCamera(nullptr);
-  this->SetCalibrationFileName(nullptr);
-}
+vtkCatadioptricProjection::~vtkCatadioptricProjection() = default;
 
-vtkMTimeType vtkCatadioptricProjection::GetMTime()
-{
-  vtkMTimeType t = this->Superclass::GetMTime();
-  if (this->Camera)
-  {
-    t = std::max(t, this->Camera->GetMTime());
-  }
-  return t;
-}
-
-vtkCatadioptricCamera* vtkCatadioptricProjection::ResolveCamera()
-{
-  std::string error;
-  vtkCatadioptricCamera* camera = vtkCatadioptricCamera::Resolve(
-    this->Camera, this->CalibrationFileName, this->FileCamera, this->LoadedFileName, error);
-  if (!camera)
-  {
-    vtkErrorMacro(<< error);
-  }
-  return camera;
-}
+vtkCatadioptricCameraSlotMacro(vtkCatadioptricProjection);
 
 int vtkCatadioptricProjection::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -250,8 +225,8 @@ int vtkCatadioptricProjection::RequestData(
 void vtkCatadioptricProjection::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Camera: " << this->Camera << "\n";
-  os << indent << "CalibrationFileName: "
-     << (this->CalibrationFileName ? this->CalibrationFileName : "(none)") << "\n";
+  os << indent << "Camera: " << this->CameraSlot.GetCamera() << "\n";
+  const char* file = this->CameraSlot.GetCalibrationFileName();
+  os << indent << "CalibrationFileName: " << (file ? file : "(none)") << "\n";
   os << indent << "Solver: " << (this->Solver == ITERATIVE ? "Iterative" : "Quartic") << "\n";
 }

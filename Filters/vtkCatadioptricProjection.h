@@ -21,9 +21,7 @@
 
 #include "CatadioptricARFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
-#include "vtkSmartPointer.h" // for member
-
-#include <string> // for member
+#include "vtkCatadioptricCameraSlot.h" // for member
 
 class vtkCatadioptricCamera;
 
@@ -36,14 +34,14 @@ public:
 
   ///@{
   /// The camera. Takes precedence over CalibrationFileName.
-  virtual void SetCamera(vtkCatadioptricCamera* camera);
-  vtkGetObjectMacro(Camera, vtkCatadioptricCamera);
+  void SetCamera(vtkCatadioptricCamera* camera);
+  vtkCatadioptricCamera* GetCamera();
   ///@}
 
   ///@{
   /// A calibration file (YAML/JSON) to use when no camera object is set (e.g. from ParaView).
-  vtkSetStringMacro(CalibrationFileName);
-  vtkGetStringMacro(CalibrationFileName);
+  void SetCalibrationFileName(const char* fileName);
+  const char* GetCalibrationFileName();
   ///@}
 
   /// Solvers for the reflection point.
@@ -72,11 +70,8 @@ protected:
   /// The camera to use for this execution (Camera, or one loaded from CalibrationFileName).
   vtkCatadioptricCamera* ResolveCamera();
 
-  vtkCatadioptricCamera* Camera = nullptr;
-  char* CalibrationFileName = nullptr;
+  vtkCatadioptricCameraSlot CameraSlot;
   int Solver = QUARTIC;
-  vtkSmartPointer<vtkCatadioptricCamera> FileCamera;
-  std::string LoadedFileName;
 
 private:
   vtkCatadioptricProjection(const vtkCatadioptricProjection&) = delete;

@@ -108,13 +108,17 @@ struct Plane
   double dy = 0;     // per row down
 };
 
+// Edge slots: every non-degenerate triangle has one or two edges that bound its rows on the left
+// (stepX > 0: the edge function grows to the right) and one or two on the right (stepX < 0);
+// with only one, the slot pair holds it twice. Horizontal edges (stepX == 0) only limit the rows
+// and are applied to yMin/yMax at setup.
 struct Setup
 {
   int xMin, xMax, yMin, yMax; // inclusive pixel range to scan (already clipped)
-  std::int64_t w[3];          // biased edge functions at (xMin, yMin)
-  std::int64_t stepX[3];      // change per pixel to the right
-  double invStepX[3];         // 1 / |stepX| (0 where stepX == 0)
-  std::int64_t stepY[3];      // change per row down
+  std::int64_t w[4];          // biased edge functions at (xMin, yMin): left, left, right, right
+  std::int64_t stepX[4];      // change per pixel to the right (> 0 left, < 0 right)
+  std::int64_t stepY[4];      // change per row down
+  double invStepX[4];         // 1 / |stepX|
   Plane colour[4];            // r, g, b, a (used when not flat)
   Plane depth;                // used with a depth buffer
   BlendSource flat;           // used when flat
@@ -122,65 +126,46 @@ struct Setup
   bool flatOpaque;            // flat and alpha == 1
 };
 
-// Columns [lo, hi] (offsets from xMin, inclusive) of a row whose biased edge functions at xMin
-// are w, i.e. the k in [0, last] with w[i] + k * stepX[i] >= 0 for all i; false if none. The
-// crossing of each edge is estimated in double (invStep = 1 / |stepX|) and then corrected with
-// exact integer tests, so the result is exact.
-inline bool RowSpan(const std::int64_t w[3], const std::int64_t stepX[3], const double invStep[3],
-  std::int64_t last, int& lo, int& hi)
+// Converts a double, already limited to a few units beyond [0, last], to int64 by floor or ceil.
+inline std::int64_t FloorSmall(double v)
 {
+  const std::int64_t t = static_cast<std::int64_t>(v);
+  return t - (static_cast<double>(t) > v ? 1 : 0);
+}
+
+inline std::int64_t CeilSmall(double v)
+{
+  const std::int64_t t = static_cast<std::int64_t>(v);
+  return t + (static_cast<double>(t) < v ? 1 : 0);
+}
+
+// Columns [lo, hi] (offsets from xMin, inclusive) of a row whose biased edge functions at xMin are
+// w, i.e. the k in [0, last] with w[i] + k * stepX[i] >= 0 for all slots; false if none.
+// Each crossing is estimated in double (|error| < 1 once clamped to [-2, last + 2]) and then
+// corrected by exact integer tests (no overflow: |w| < 2^60, |stepX * k| < 2^59), so the span is
+// exact; there is no data-dependent branch except the final emptiness test.
+inline bool RowSpan(const std::int64_t w[4], const Setup& s, std::int64_t last, int& lo, int& hi)
+{
+  const double lim = static_cast<double>(last) + 2.0;
   std::int64_t l = 0;
   std::int64_t h = last;
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 2; ++i) // left: smallest k with w + stepX k >= 0, i.e. ceil(-w / stepX)
   {
-    const std::int64_t s = stepX[i];
-    const std::int64_t wi = w[i];
-    if (s > 0)
-    {
-      if (wi < 0) // covered from k = ceil(-w / s) on
-      {
-        const double kd = static_cast<double>(-wi) * invStep[i];
-        if (kd > static_cast<double>(h) + 1.0)
-        {
-          return false;
-        }
-        std::int64_t k = static_cast<std::int64_t>(kd);
-        while (wi + s * k < 0)
-        {
-          ++k;
-        }
-        while (k > 0 && wi + s * (k - 1) >= 0)
-        {
-          --k;
-        }
-        l = std::max(l, k);
-      }
-    }
-    else if (s < 0)
-    {
-      if (wi < 0)
-      {
-        return false; // decreasing and already negative
-      }
-      const double kd = static_cast<double>(wi) * invStep[i]; // covered up to k = floor(w / -s)
-      if (kd < static_cast<double>(h) + 1.0)
-      {
-        std::int64_t k = static_cast<std::int64_t>(kd);
-        while (wi + s * (k + 1) >= 0)
-        {
-          ++k;
-        }
-        while (wi + s * k < 0)
-        {
-          --k;
-        }
-        h = std::min(h, k);
-      }
-    }
-    else if (wi < 0)
-    {
-      return false;
-    }
+    const std::int64_t st = s.stepX[i];
+    const double kd = std::min(lim, std::max(-2.0, -static_cast<double>(w[i]) * s.invStepX[i]));
+    std::int64_t k = CeilSmall(kd);
+    k -= (w[i] + st * (k - 1) >= 0) ? 1 : 0;
+    k += (w[i] + st * k < 0) ? 1 : 0;
+    l = std::max(l, k);
+  }
+  for (int i = 2; i < 4; ++i) // right: largest k with w + stepX k >= 0, i.e. floor(w / -stepX)
+  {
+    const std::int64_t st = s.stepX[i];
+    const double kd = std::min(lim, std::max(-2.0, static_cast<double>(w[i]) * s.invStepX[i]));
+    std::int64_t k = FloorSmall(kd);
+    k += (w[i] + st * (k + 1) >= 0) ? 1 : 0;
+    k -= (w[i] + st * k < 0) ? 1 : 0;
+    h = std::min(h, k);
   }
   if (l > h)
   {
@@ -196,12 +181,17 @@ template <bool kFlat, bool kDepth>
 bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
 {
   bool any = false;
-  std::int64_t w[3] = { s.w[0], s.w[1], s.w[2] };
+  std::int64_t w[4] = { s.w[0], s.w[1], s.w[2], s.w[3] };
   const std::int64_t last = s.xMax - s.xMin;
-  for (int y = s.yMin; y <= s.yMax; ++y, w[0] += s.stepY[0], w[1] += s.stepY[1], w[2] += s.stepY[2])
+  for (int y = s.yMin; y <= s.yMax; ++y)
   {
     int lo, hi;
-    if (!RowSpan(w, s.stepX, s.invStepX, last, lo, hi))
+    const bool covered = RowSpan(w, s, last, lo, hi);
+    for (int i = 0; i < 4; ++i)
+    {
+      w[i] += s.stepY[i];
+    }
+    if (!covered)
     {
       continue;
     }
@@ -348,9 +338,12 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     return RasterResult::Empty;
   }
 
-  // Edge i is the one opposite vertex i: a = vertex i+1, b = vertex i+2.
+  // Edge i is the one opposite vertex i: a = vertex i+1, b = vertex i+2. Edges are sorted into
+  // the left/right slots; horizontal edges narrow the row range.
   const std::int64_t px = static_cast<std::int64_t>(s.xMin) * kOne;
   const std::int64_t py = static_cast<std::int64_t>(s.yMin) * kOne;
+  const int yMin0 = s.yMin;
+  int nLeft = 0, nRight = 0;
   for (int i = 0; i < 3; ++i)
   {
     const int a = (i + 1) % 3;
@@ -358,10 +351,54 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     const std::int64_t ex = X[b] - X[a];
     const std::int64_t ey = Y[b] - Y[a];
     const bool topLeft = ey < 0 || (ey == 0 && ex > 0);
-    s.w[i] = ex * (py - Y[a]) - ey * (px - X[a]) - (topLeft ? 0 : 1);
-    s.stepX[i] = -ey * kOne;
-    s.invStepX[i] = ey == 0 ? 0.0 : 1.0 / static_cast<double>(std::abs(ey) * kOne);
-    s.stepY[i] = ex * kOne;
+    const std::int64_t w = ex * (py - Y[a]) - ey * (px - X[a]) - (topLeft ? 0 : 1);
+    const std::int64_t stepY = ex * kOne;
+    if (ey == 0)
+    {
+      // w(y) = w + stepY (y - yMin) >= 0. Top edge (stepY > 0): from row yMin + ceil(-w / stepY);
+      // bottom edge (stepY < 0): up to row yMin + floor(w / -stepY).
+      if (stepY > 0)
+      {
+        if (w < 0)
+        {
+          s.yMin = std::max(s.yMin, yMin0 + static_cast<int>((-w + stepY - 1) / stepY));
+        }
+      }
+      else if (w < 0)
+      {
+        return RasterResult::Empty;
+      }
+      else
+      {
+        s.yMax = static_cast<int>(std::min<std::int64_t>(s.yMax, yMin0 + w / -stepY));
+      }
+      continue;
+    }
+    const int slot = ey < 0 ? nLeft++ : 2 + nRight++;
+    s.w[slot] = w;
+    s.stepX[slot] = -ey * kOne;
+    s.stepY[slot] = stepY;
+    s.invStepX[slot] = 1.0 / static_cast<double>(std::abs(ey) * kOne);
+  }
+  if (nLeft == 1)
+  {
+    s.w[1] = s.w[0], s.stepX[1] = s.stepX[0], s.stepY[1] = s.stepY[0];
+    s.invStepX[1] = s.invStepX[0];
+  }
+  if (nRight == 1)
+  {
+    s.w[3] = s.w[2], s.stepX[3] = s.stepX[2], s.stepY[3] = s.stepY[2];
+    s.invStepX[3] = s.invStepX[2];
+  }
+  if (s.yMin > s.yMax)
+  {
+    return RasterResult::Empty;
+  }
+  // Rows skipped at the top by a top edge: move the slot values down to the new yMin.
+  const std::int64_t skipped = s.yMin - yMin0;
+  for (int i = 0; i < 4; ++i)
+  {
+    s.w[i] += skipped * s.stepY[i];
   }
 
   // Attribute planes in pixel units, relative to the (snapped) vertex 0.

@@ -16,40 +16,15 @@
 #include <algorithm>
 
 vtkStandardNewMacro(vtkCatadioptricEnvironmentSource);
-vtkCxxSetObjectMacro(vtkCatadioptricEnvironmentSource, Camera, vtkCatadioptricCamera);
 
 vtkCatadioptricEnvironmentSource::vtkCatadioptricEnvironmentSource()
 {
   this->SetNumberOfInputPorts(0);
 }
 
-vtkCatadioptricEnvironmentSource::~vtkCatadioptricEnvironmentSource()
-{
-  this->SetCamera(nullptr);
-  this->SetCalibrationFileName(nullptr);
-}
+vtkCatadioptricEnvironmentSource::~vtkCatadioptricEnvironmentSource() = default;
 
-vtkMTimeType vtkCatadioptricEnvironmentSource::GetMTime()
-{
-  vtkMTimeType t = this->Superclass::GetMTime();
-  if (this->Camera)
-  {
-    t = std::max(t, this->Camera->GetMTime());
-  }
-  return t;
-}
-
-vtkCatadioptricCamera* vtkCatadioptricEnvironmentSource::ResolveCamera()
-{
-  std::string error;
-  vtkCatadioptricCamera* camera = vtkCatadioptricCamera::Resolve(
-    this->Camera, this->CalibrationFileName, this->FileCamera, this->LoadedFileName, error);
-  if (!camera)
-  {
-    vtkErrorMacro(<< error);
-  }
-  return camera;
-}
+vtkCatadioptricCameraSlotMacro(vtkCatadioptricEnvironmentSource);
 
 int vtkCatadioptricEnvironmentSource::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
@@ -119,9 +94,9 @@ int vtkCatadioptricEnvironmentSource::RequestData(
 void vtkCatadioptricEnvironmentSource::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Camera: " << this->Camera << "\n";
-  os << indent << "CalibrationFileName: "
-     << (this->CalibrationFileName ? this->CalibrationFileName : "(none)") << "\n";
+  os << indent << "Camera: " << this->CameraSlot.GetCamera() << "\n";
+  const char* file = this->CameraSlot.GetCalibrationFileName();
+  os << indent << "CalibrationFileName: " << (file ? file : "(none)") << "\n";
   os << indent << "Samples: " << this->Samples << "\n";
   os << indent << "RoomMinimum: " << this->RoomMinimum[0] << ", " << this->RoomMinimum[1] << ", "
      << this->RoomMinimum[2] << "\n";

@@ -15,9 +15,7 @@
 
 #include "CatadioptricARRenderingModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
-#include "vtkSmartPointer.h" // for member
-
-#include <string> // for member
+#include "vtkCatadioptricCameraSlot.h" // for member
 
 class vtkCatadioptricCamera;
 
@@ -30,14 +28,14 @@ public:
 
   ///@{
   /// The camera. Takes precedence over CalibrationFileName.
-  virtual void SetCamera(vtkCatadioptricCamera* camera);
-  vtkGetObjectMacro(Camera, vtkCatadioptricCamera);
+  void SetCamera(vtkCatadioptricCamera* camera);
+  vtkCatadioptricCamera* GetCamera();
   ///@}
 
   ///@{
   /// A calibration file (YAML/JSON) to use when no camera object is set.
-  vtkSetStringMacro(CalibrationFileName);
-  vtkGetStringMacro(CalibrationFileName);
+  void SetCalibrationFileName(const char* fileName);
+  const char* GetCalibrationFileName();
   ///@}
 
   ///@{
@@ -67,14 +65,11 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   vtkCatadioptricCamera* ResolveCamera();
 
-  vtkCatadioptricCamera* Camera = nullptr;
-  char* CalibrationFileName = nullptr;
+  vtkCatadioptricCameraSlot CameraSlot;
   int Samples = 2;
   double RoomMinimum[3] = { -2.0, -2.0, 0.0 };
   double RoomMaximum[3] = { 2.0, 2.0, 2.6 };
   double FloorTileSize = 0.25;
-  vtkSmartPointer<vtkCatadioptricCamera> FileCamera;
-  std::string LoadedFileName;
 
 private:
   vtkCatadioptricEnvironmentSource(const vtkCatadioptricEnvironmentSource&) = delete;

@@ -1,0 +1,93 @@
+/**
+ * @class   vtkCatadioptricCameraSlot
+ * @brief   where a filter or source gets its camera: an object, or a calibration file
+ *
+ * Not a vtkObject: a member of the algorithms that need a camera
+ * (vtkCatadioptricProjection, vtkCatadioptricEnvironmentSource). The camera object takes
+ * precedence; otherwise the calibration file is loaded, once per file name, into a private
+ * camera. C++ only (not wrapped).
+ */
+#ifndef vtkCatadioptricCameraSlot_h
+#define vtkCatadioptricCameraSlot_h
+
+#include "CatadioptricARFiltersModule.h" // for export macro
+#include "vtkSmartPointer.h"             // for members
+#include "vtkType.h"                     // for vtkMTimeType
+
+#include <string> // for members
+
+class vtkCatadioptricCamera;
+
+class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricCameraSlot
+{
+public:
+  vtkCatadioptricCameraSlot();
+  ~vtkCatadioptricCameraSlot();
+
+  /// Set the camera object; returns true when it changed.
+  bool SetCamera(vtkCatadioptricCamera* camera);
+  vtkCatadioptricCamera* GetCamera() const;
+
+  /// Set the calibration file name (null or "" for none); returns true when it changed.
+  bool SetCalibrationFileName(const char* fileName);
+  /// The file name, or null when none is set.
+  const char* GetCalibrationFileName() const;
+
+  /// The camera object's modification time (0 without one).
+  vtkMTimeType GetCameraMTime() const;
+
+  /// The camera to use now: the object if set, else the one loaded from the file. Returns nullptr
+  /// and says why in `error` when neither gives a camera.
+  vtkCatadioptricCamera* Resolve(std::string& error);
+
+private:
+  vtkSmartPointer<vtkCatadioptricCamera> Camera;
+  std::string FileName;
+  vtkSmartPointer<vtkCatadioptricCamera> FileCamera;
+  std::string LoadedFileName;
+};
+
+/**
+ * Defines, in a .cxx, the camera members of an algorithm that holds a
+ * `vtkCatadioptricCameraSlot CameraSlot`: SetCamera, GetCamera, SetCalibrationFileName,
+ * GetCalibrationFileName, GetMTime (including the camera's) and ResolveCamera (reports failures
+ * with vtkErrorMacro).
+ */
+#define vtkCatadioptricCameraSlotMacro(thisClass)                                                  \
+  void thisClass::SetCamera(vtkCatadioptricCamera* camera)                                         \
+  {                                                                                                \
+    if (this->CameraSlot.SetCamera(camera))                                                        \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  vtkCatadioptricCamera* thisClass::GetCamera() { return this->CameraSlot.GetCamera(); }           \
+  void thisClass::SetCalibrationFileName(const char* fileName)                                     \
+  {                                                                                                \
+    if (this->CameraSlot.SetCalibrationFileName(fileName))                                         \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  const char* thisClass::GetCalibrationFileName()                                                  \
+  {                                                                                                \
+    return this->CameraSlot.GetCalibrationFileName();                                              \
+  }                                                                                                \
+  vtkMTimeType thisClass::GetMTime()                                                               \
+  {                                                                                                \
+    const vtkMTimeType own = this->Superclass::GetMTime();                                         \
+    const vtkMTimeType camera = this->CameraSlot.GetCameraMTime();                                 \
+    return own > camera ? own : camera;                                                            \
+  }                                                                                                \
+  vtkCatadioptricCamera* thisClass::ResolveCamera()                                                \
+  {                                                                                                \
+    std::string error;                                                                             \
+    vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error);                               \
+    if (!camera)                                                                                   \
+    {                                                                                              \
+      vtkErrorMacro(<< error);                                                                     \
+    }                                                                                              \
+    return camera;                                                                                 \
+  }
+
+#endif
