@@ -101,10 +101,9 @@ int main(int argc, char* argv[])
   }
   vtkCatadioptricCamera* cam = renderer->GetCamera();
   std::printf("scene: %s\n", scene.empty() ? "(built-in demo)" : scene.c_str());
-  std::printf("image: %d x %d, %lld triangles, SMP backend %s (%d threads)\n",
-    cam->GetImageWidth(), cam->GetImageHeight(),
-    static_cast<long long>(renderer->GetNumberOfTriangles()), vtkSMPTools::GetBackend(),
-    vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::printf("image: %d x %d, %lld triangles, SMP backend %s (%d threads)\n", cam->GetImageWidth(),
+    cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
+    vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
   double perFrame = 0.0;
   for (int s = 0; s < renderer->GetNumberOfStages(); ++s)
   {

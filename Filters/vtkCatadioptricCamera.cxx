@@ -112,7 +112,8 @@ catar::CameraModel vtkCatadioptricCamera::GetModel()
   m.intrinsics.height = this->ImageHeight;
   m.distortion = catar::Distortion{ this->Distortion[0], this->Distortion[1], this->Distortion[2],
     this->Distortion[3], this->Distortion[4] };
-  m.mirror.center = catar::Vec3(this->MirrorCenter[0], this->MirrorCenter[1], this->MirrorCenter[2]);
+  m.mirror.center =
+    catar::Vec3(this->MirrorCenter[0], this->MirrorCenter[1], this->MirrorCenter[2]);
   m.mirror.radius = this->MirrorRadius;
   for (int r = 0; r < 4; ++r)
   {
@@ -292,8 +293,8 @@ void vtkCatadioptricCamera::PrintSelf(ostream& os, vtkIndent indent)
     os << " " << d;
   }
   os << "\n";
-  os << indent << "MirrorCenter: " << this->MirrorCenter[0] << ", " << this->MirrorCenter[1]
-     << ", " << this->MirrorCenter[2] << "\n";
+  os << indent << "MirrorCenter: " << this->MirrorCenter[0] << ", " << this->MirrorCenter[1] << ", "
+     << this->MirrorCenter[2] << "\n";
   os << indent << "MirrorRadius: " << this->MirrorRadius << "\n";
   os << indent << "WorldToCamera:\n";
   this->WorldToCamera->PrintSelf(os, indent.GetNextIndent());

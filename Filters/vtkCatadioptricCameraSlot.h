@@ -61,7 +61,10 @@ private:
       this->Modified();                                                                            \
     }                                                                                              \
   }                                                                                                \
-  vtkCatadioptricCamera* thisClass::GetCamera() { return this->CameraSlot.GetCamera(); }           \
+  vtkCatadioptricCamera* thisClass::GetCamera()                                                    \
+  {                                                                                                \
+    return this->CameraSlot.GetCamera();                                                           \
+  }                                                                                                \
   void thisClass::SetCalibrationFileName(const char* fileName)                                     \
   {                                                                                                \
     if (this->CameraSlot.SetCalibrationFileName(fileName))                                         \

@@ -28,8 +28,9 @@ int vtkCatadioptricPainterSort::RequestData(
   }
   const vtkIdType nCells = input->GetNumberOfCells();
   vtkDataArray* depthArray = input->GetCellData()->GetArray("CentroidDepth");
-  if (nCells > 0 && (!depthArray || depthArray->GetNumberOfComponents() != 1 ||
-                      depthArray->GetNumberOfTuples() != nCells))
+  if (nCells > 0 &&
+    (!depthArray || depthArray->GetNumberOfComponents() != 1 ||
+      depthArray->GetNumberOfTuples() != nCells))
   {
     vtkErrorMacro("The input has no CentroidDepth cell array: run vtkCatadioptricProjection "
                   "before vtkCatadioptricPainterSort.");
@@ -73,8 +74,7 @@ int vtkCatadioptricPainterSort::RequestData(
   // New polygon connectivity in the sorted order.
   vtkCellArray* inPolys = input->GetPolys();
   vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(static_cast<vtkIdType>(order.size()),
-    inPolys->GetNumberOfConnectivityIds());
+  polys->AllocateExact(static_cast<vtkIdType>(order.size()), inPolys->GetNumberOfConnectivityIds());
   vtkNew<vtkIdList> ids;
   for (vtkIdType c : order)
   {

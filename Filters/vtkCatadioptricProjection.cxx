@@ -38,7 +38,7 @@ struct CellWorker
   double Width;
   double Height;
 
-  template <typename CellStateT>
+  template<typename CellStateT>
   void operator()(CellStateT& state, vtkIdType begin, vtkIdType end) const
   {
     for (vtkIdType c = begin; c < end; ++c)
@@ -91,11 +91,11 @@ struct CellWorker
 
 struct CellDispatch
 {
-  template <typename CellStateT>
+  template<typename CellStateT>
   void operator()(CellStateT& state, const CellWorker& worker) const
   {
-    vtkSMPTools::For(0, state.GetNumberOfCells(),
-      [&](vtkIdType b, vtkIdType e) { worker(state, b, e); });
+    vtkSMPTools::For(
+      0, state.GetNumberOfCells(), [&](vtkIdType b, vtkIdType e) { worker(state, b, e); });
   }
 };
 } // namespace

@@ -20,8 +20,8 @@
 #define vtkCatadioptricProjection_h
 
 #include "CatadioptricARFiltersModule.h" // for export macro
+#include "vtkCatadioptricCameraSlot.h"   // for member
 #include "vtkPolyDataAlgorithm.h"
-#include "vtkCatadioptricCameraSlot.h" // for member
 
 class vtkCatadioptricCamera;
 

@@ -175,8 +175,8 @@ void ReadCalibration(const cv::FileNode& node, CameraModel& m)
 
 namespace
 {
-bool ReadStorage(cv::FileStorage& storage, const std::string& what, CameraModel& model,
-  std::string& error)
+bool ReadStorage(
+  cv::FileStorage& storage, const std::string& what, CameraModel& model, std::string& error)
 {
   try
   {

@@ -155,7 +155,8 @@ void RenderEnvironmentRows(const SphereProjector& projector, const RoomEnvironme
       std::uint8_t* out = target.pixel(x, y);
       for (int k = 0; k < 3; ++k)
       {
-        out[k] = static_cast<std::uint8_t>(std::lround(255.0 * std::min(1.0, std::max(0.0, sum[k]))));
+        out[k] =
+          static_cast<std::uint8_t>(std::lround(255.0 * std::min(1.0, std::max(0.0, sum[k]))));
       }
       out[3] = 255;
     }

@@ -88,8 +88,8 @@ SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int
     else if (o.type != "box" && o.type != "sphere" && o.type != "torus" && o.type != "cylinder" &&
       o.type != "plane")
     {
-      throw fs::ParseError("unknown type '" + o.type +
-        "' (mesh, box, sphere, torus, cylinder, plane)");
+      throw fs::ParseError(
+        "unknown type '" + o.type + "' (mesh, box, sphere, torus, cylinder, plane)");
     }
     o.name = fs::String(node, "name", o.type);
     o.size = Vec3Or(node, "size", o.size);
@@ -102,8 +102,7 @@ SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int
       throw fs::ParseError("'resolution' must be an integer in [1, 4096]");
     }
     o.resolution = static_cast<int>(res);
-    if ((o.size.array() <= 0.0).any() || !(o.radius > 0) || !(o.tubeRadius > 0) ||
-      !(o.height > 0))
+    if ((o.size.array() <= 0.0).any() || !(o.radius > 0) || !(o.tubeRadius > 0) || !(o.height > 0))
     {
       throw fs::ParseError("sizes and radii must be positive");
     }
@@ -270,8 +269,8 @@ bool LoadScene(const std::string& path, SceneDescription& scene, std::string& er
   return true;
 }
 
-bool ParseScene(const std::string& text, const std::string& baseDir, SceneDescription& scene,
-  std::string& error)
+bool ParseScene(
+  const std::string& text, const std::string& baseDir, SceneDescription& scene, std::string& error)
 {
   cv::FileStorage storage;
   try

@@ -21,7 +21,7 @@ struct SceneObject
   /// "mesh" (a file any VTK reader takes) or a procedural object: "box", "sphere", "torus",
   /// "cylinder", "plane".
   std::string type = "box";
-  std::string file; ///< mesh file, resolved against the scene file's folder
+  std::string file;                ///< mesh file, resolved against the scene file's folder
   Vec3 size = Vec3(0.1, 0.1, 0.1); ///< box edge lengths; plane uses x, y
   double radius = 0.05;            ///< sphere, cylinder, torus ring radius
   double tubeRadius = 0.02;        ///< torus tube radius
@@ -44,15 +44,15 @@ struct SceneBackground
 {
   std::string type = "environment"; ///< "environment" (procedural room), "color" or "image"
   Vec3 color = Vec3(0, 0, 0);
-  std::string image;  ///< image file for type "image"
-  int samples = 2;    ///< supersampling of the environment (samples x samples per pixel)
+  std::string image; ///< image file for type "image"
+  int samples = 2;   ///< supersampling of the environment (samples x samples per pixel)
 };
 
 struct SceneDescription
 {
   std::string fileName; ///< where it was read from ("" for built-in)
   CameraModel camera;
-  int width = 0;  ///< output size; 0 = the calibration's
+  int width = 0; ///< output size; 0 = the calibration's
   int height = 0;
   SolverType solver = SolverType::Quartic;
   SceneBackground background;
@@ -62,8 +62,8 @@ struct SceneDescription
 /// Reads a scene file. Returns false and says why in `error` on failure.
 bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error);
 /// Reads a scene from text; relative paths resolve against `baseDir`.
-bool ParseScene(const std::string& text, const std::string& baseDir, SceneDescription& scene,
-  std::string& error);
+bool ParseScene(
+  const std::string& text, const std::string& baseDir, SceneDescription& scene, std::string& error);
 
 /// The built-in demo scene (README's picture): the paper's parallelepiped and a torus, seen in a
 /// spherical mirror hanging in a procedural room.

@@ -49,7 +49,7 @@ int SolveQuadratic(double a, double b, double c, double roots[2])
   return 2;
 }
 
-template <int N>
+template<int N>
 double PolyEval(const double (&c)[N], double x, double& derivative)
 {
   double p = c[0];
@@ -63,7 +63,7 @@ double PolyEval(const double (&c)[N], double x, double& derivative)
   return p;
 }
 
-template <int N>
+template<int N>
 void PolishRoot(const double (&c)[N], double& x, int iterations)
 {
   for (int it = 0; it < iterations; ++it)
@@ -350,8 +350,8 @@ PlanarSolution SolvePlanar(
 }
 } // namespace
 
-ProjectionStatus SphereReflectionPoint(const Vec3& centre, double radius, const Vec3& point,
-  SolverType solver, Vec3& mirrorPoint)
+ProjectionStatus SphereReflectionPoint(
+  const Vec3& centre, double radius, const Vec3& point, SolverType solver, Vec3& mirrorPoint)
 {
   mirrorPoint.setZero();
   if (!point.allFinite() || !centre.allFinite() || !std::isfinite(radius) || !(radius > 0.0))
@@ -464,8 +464,7 @@ ProjectedPoint SphereProjector::ProjectCamera(const Vec3& p, SolverType solver) 
   out.pixel = px;
   out.mirrorPoint = r;
   out.pathLength = (p - r).norm();
-  out.status =
-    this->Model.InImage(px) ? ProjectionStatus::Valid : ProjectionStatus::OutsideImage;
+  out.status = this->Model.InImage(px) ? ProjectionStatus::Valid : ProjectionStatus::OutsideImage;
   return out;
 }
 

@@ -49,8 +49,8 @@ struct BackProjectedRay
 /// Reflection point only (camera at the origin, sphere centre/radius in the camera frame).
 /// Returns Valid (and sets mirrorPoint) when a reflection exists; otherwise InsideMirror,
 /// HiddenByMirror, NoReflection or InvalidInput. Never produces NaN.
-ProjectionStatus SphereReflectionPoint(const Vec3& centre, double radius, const Vec3& point,
-  SolverType solver, Vec3& mirrorPoint);
+ProjectionStatus SphereReflectionPoint(
+  const Vec3& centre, double radius, const Vec3& point, SolverType solver, Vec3& mirrorPoint);
 
 /// Forward and back projection for one camera model, with per-camera constants precomputed.
 /// Thread-safe after construction (all methods const).

@@ -225,8 +225,8 @@ int vtkCatadioptricCompositor::RequestData(
   // Background: the frame (grey and RGB widened to RGBA), or a colour.
   if (frame)
   {
-    const unsigned char* in = static_cast<const unsigned char*>(
-      frame->GetPointData()->GetScalars()->GetVoidPointer(0));
+    const unsigned char* in =
+      static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0));
     const int nc = frameComponents;
     vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
       for (vtkIdType i = b; i < e; ++i)
@@ -279,7 +279,8 @@ int vtkCatadioptricCompositor::RequestData(
     vtkDataArray* depth = mesh->GetCellData()->GetArray("CentroidDepth");
     if (!pixels || pixels->GetNumberOfComponents() != 2 || !visible || !depth)
     {
-      vtkErrorMacro("Mesh " << m << " lacks ImageCoordinates/Visible/CentroidDepth: run "
+      vtkErrorMacro("Mesh " << m
+                            << " lacks ImageCoordinates/Visible/CentroidDepth: run "
                                "vtkCatadioptricProjection first.");
       return 0;
     }
@@ -304,8 +305,8 @@ int vtkCatadioptricCompositor::RequestData(
         color.Components = color.Array->GetNumberOfComponents();
         if (color.Components > 4)
         {
-          vtkWarningMacro("Colour array " << this->ColorArrayName << " has "
-                                          << color.Components << " components; using the first 4.");
+          vtkWarningMacro("Colour array " << this->ColorArrayName << " has " << color.Components
+                                          << " components; using the first 4.");
         }
       }
     }

@@ -14,8 +14,8 @@
 #define vtkCatadioptricEnvironmentSource_h
 
 #include "CatadioptricARRenderingModule.h" // for export macro
+#include "vtkCatadioptricCameraSlot.h"     // for member
 #include "vtkImageAlgorithm.h"
-#include "vtkCatadioptricCameraSlot.h" // for member
 
 class vtkCatadioptricCamera;
 

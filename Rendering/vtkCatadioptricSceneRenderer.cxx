@@ -64,8 +64,8 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& file)
   {
     throw std::runtime_error("mesh file not found: " + file);
   }
-  const std::string ext = vtksys::SystemTools::LowerCase(
-    vtksys::SystemTools::GetFilenameLastExtension(file));
+  const std::string ext =
+    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(file));
   vtkSmartPointer<vtkAlgorithm> reader;
   if (ext == ".ply")
   {
@@ -99,8 +99,8 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& file)
   }
   else
   {
-    throw std::runtime_error("unsupported mesh format '" + ext + "' (ply, obj, stl, vtp, vtk): " +
-      file);
+    throw std::runtime_error(
+      "unsupported mesh format '" + ext + "' (ply, obj, stl, vtp, vtk): " + file);
   }
   reader->Update();
   vtkSmartPointer<vtkPolyData> out = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
@@ -223,7 +223,8 @@ void Colorize(vtkPolyData* mesh, const catar::SceneObject& o)
         long parity = 0;
         for (int k = 0; k < 3; ++k)
         {
-          parity += static_cast<long>(std::floor((p[0][k] + p[1][k] + p[2][k]) / 3.0 / o.patternSize));
+          parity +=
+            static_cast<long>(std::floor((p[0][k] + p[1][k] + p[2][k]) / 3.0 / o.patternSize));
         }
         if (parity & 1)
         {

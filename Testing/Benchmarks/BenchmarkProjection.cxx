@@ -36,9 +36,9 @@ std::vector<Vec3> ScenePoints(const CameraModel& model, size_t n)
 void SetPerItem(benchmark::State& state, size_t itemsPerIteration)
 {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * itemsPerIteration));
-  state.counters["ns_per_item"] = benchmark::Counter(
-    static_cast<double>(state.iterations() * itemsPerIteration),
-    benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
+  state.counters["ns_per_item"] =
+    benchmark::Counter(static_cast<double>(state.iterations() * itemsPerIteration),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
 }
 
 void BM_ForwardProjection(benchmark::State& state)

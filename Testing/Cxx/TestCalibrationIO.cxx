@@ -102,18 +102,22 @@ TEST(CalibrationIO, ErrorsNameTheProblem)
   const std::vector<Case> cases = {
     { "{" + good + "}", "mirror" },
     { R"({"image_width": 640, "camera_matrix": [500, 0, 319.5, 0, 500, 239.5, 0, 0, 1],
-         "mirror": {"center": [0,0,1], "radius": 0.1}})", "image_height" },
+         "mirror": {"center": [0,0,1], "radius": 0.1}})",
+      "image_height" },
     { "{" + good + R"(, "mirror": {"center": [0,0,1]}})", "radius" },
     { "{" + good + R"(, "mirror": {"center": [0,0], "radius": 0.1}})", "mirror.center" },
     { "{" + good + R"(, "mirror": {"type": "cone", "center": [0,0,1], "radius": 0.1}})", "cone" },
     { "{" + good + R"(, "mirror": {"center": [0,0,0.05], "radius": 0.1}})", "inside" },
     { "{" + good + R"(, "mirror": {"center": [0,0,1], "radius": -0.1}})", "radius" },
     { "{" + good + R"(, "mirror": {"center": [0,0,1], "radius": 0.1},
-         "distortion_coefficients": [1, 2, 3]})", "distortion" },
+         "distortion_coefficients": [1, 2, 3]})",
+      "distortion" },
     { "{" + good + R"(, "mirror": {"center": [0,0,1], "radius": 0.1},
-         "world_to_camera": [2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]})", "rotation" },
+         "world_to_camera": [2,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]})",
+      "rotation" },
     { R"({"image_width": 640, "image_height": 480, "camera_matrix": [-5, 0, 1, 0, 5, 1, 0, 0, 1],
-         "mirror": {"center": [0,0,1], "radius": 0.1}})", "focal" },
+         "mirror": {"center": [0,0,1], "radius": 0.1}})",
+      "focal" },
   };
   for (const Case& c : cases)
   {
@@ -121,8 +125,8 @@ TEST(CalibrationIO, ErrorsNameTheProblem)
     const CameraModel before = m;
     std::string error;
     EXPECT_FALSE(ParseText(c.text, m, error)) << c.text;
-    EXPECT_NE(error.find(c.expected), std::string::npos) << "error '" << error << "' lacks '"
-                                                         << c.expected << "'";
+    EXPECT_NE(error.find(c.expected), std::string::npos)
+      << "error '" << error << "' lacks '" << c.expected << "'";
     ExpectSame(before, m); // untouched on failure
   }
   CameraModel m;

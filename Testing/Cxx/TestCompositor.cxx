@@ -27,8 +27,8 @@ constexpr int W = 40;
 constexpr int H = 30;
 
 // A mesh of triangles given directly in pixels (x right, y down), as if projected.
-vtkSmartPointer<vtkPolyData> PixelMesh(const std::vector<std::array<double, 6>>& tris,
-  const std::vector<double>& depths)
+vtkSmartPointer<vtkPolyData> PixelMesh(
+  const std::vector<std::array<double, 6>>& tris, const std::vector<double>& depths)
 {
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> pts;
@@ -138,8 +138,8 @@ TEST(vtkCatadioptricCompositor, PainterOrderAndMergingByDepth)
   const auto second = square(10, 10, 30, 25);
   tris.insert(tris.end(), second.begin(), second.end());
   auto mesh = PixelMesh(tris, { 2.0, 2.0, 1.0, 1.0 });
-  CellColors(mesh, { { 255, 0, 0, 255 }, { 255, 0, 0, 255 }, { 0, 255, 0, 255 },
-                     { 0, 255, 0, 255 } });
+  CellColors(
+    mesh, { { 255, 0, 0, 255 }, { 255, 0, 0, 255 }, { 0, 255, 0, 255 }, { 0, 255, 0, 255 } });
   vtkNew<vtkCatadioptricCompositor> comp;
   comp->AddMeshData(mesh);
   comp->Update();

@@ -55,8 +55,8 @@ void WritePNG(vtkImageData* image, const std::string& path)
 const unsigned char* PixelOf(vtkImageData* img, double x, double y)
 {
   const int h = img->GetDimensions()[1];
-  return static_cast<unsigned char*>(
-    img->GetScalarPointer(static_cast<int>(std::lround(x)), h - 1 - static_cast<int>(std::lround(y)), 0));
+  return static_cast<unsigned char*>(img->GetScalarPointer(
+    static_cast<int>(std::lround(x)), h - 1 - static_cast<int>(std::lround(y)), 0));
 }
 } // namespace
 
@@ -183,8 +183,10 @@ TEST(DemoScene, ObjectsLandWhereTheCameraProjectsThem)
     ++total;
     const unsigned char* c = PixelOf(image, px[0], px[1]);
     // Orange (242, 140, 26) or its 0.55 shade (133, 77, 14), +-1.
-    const bool lit = std::abs(c[0] - 242) <= 1 && std::abs(c[1] - 140) <= 1 && std::abs(c[2] - 26) <= 1;
-    const bool dark = std::abs(c[0] - 133) <= 1 && std::abs(c[1] - 77) <= 1 && std::abs(c[2] - 14) <= 1;
+    const bool lit =
+      std::abs(c[0] - 242) <= 1 && std::abs(c[1] - 140) <= 1 && std::abs(c[2] - 26) <= 1;
+    const bool dark =
+      std::abs(c[0] - 133) <= 1 && std::abs(c[1] - 77) <= 1 && std::abs(c[2] - 14) <= 1;
     orange += lit || dark;
   }
   EXPECT_GT(total, 8);

@@ -110,7 +110,8 @@ TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)
   ASSERT_EQ(px->GetNumberOfComponents(), 2);
   ASSERT_EQ(mp->GetNumberOfComponents(), 3);
   // Points stay in world coordinates; the camera travels in field data.
-  EXPECT_EQ(out->GetPoints(), proj->GetInput() ? vtkPolyData::SafeDownCast(proj->GetInput())->GetPoints() : nullptr);
+  EXPECT_EQ(out->GetPoints(),
+    proj->GetInput() ? vtkPolyData::SafeDownCast(proj->GetInput())->GetPoints() : nullptr);
   vtkNew<vtkCatadioptricCamera> fromField;
   ASSERT_TRUE(fromField->ReadFromFieldData(out->GetFieldData()));
 
@@ -151,11 +152,15 @@ TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)
   vtkDataArray* px2 = proj->GetOutput()->GetPointData()->GetArray("ImageCoordinates");
   for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
   {
-    EXPECT_NEAR(px2->GetComponent(i, 0), core.ProjectWorld([&] {
-      double p[3];
-      proj->GetOutput()->GetPoint(i, p);
-      return catar::Vec3(p[0], p[1], p[2]);
-    }()).pixel.x(), 1e-9);
+    EXPECT_NEAR(px2->GetComponent(i, 0),
+      core
+        .ProjectWorld([&] {
+          double p[3];
+          proj->GetOutput()->GetPoint(i, p);
+          return catar::Vec3(p[0], p[1], p[2]);
+        }())
+        .pixel.x(),
+      1e-9);
   }
 }
 

@@ -77,8 +77,8 @@ TEST(SceneDescription, ErrorsNameTheKey)
     std::string error;
     const std::string text = std::string("%YAML:1.0\n---\n") + kCamera + c.body + "\n";
     EXPECT_FALSE(ParseScene(text, "", s, error)) << c.body;
-    EXPECT_NE(error.find(c.expected), std::string::npos) << "'" << error << "' lacks '"
-                                                         << c.expected << "'";
+    EXPECT_NE(error.find(c.expected), std::string::npos)
+      << "'" << error << "' lacks '" << c.expected << "'";
   }
   SceneDescription s;
   std::string error;

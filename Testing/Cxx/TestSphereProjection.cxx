@@ -179,12 +179,13 @@ TEST(SphereProjection, StatusesAreConsistentAndNeverNaN)
     for (int i = 0; i < 20000; ++i)
     {
       std::uniform_real_distribution<double> logd(std::log(0.2), std::log(1e6));
-      const Vec3 p = g.model.mirror.center + g.model.mirror.radius * std::exp(logd(rng)) *
-          RandomUnit(rng);
+      const Vec3 p =
+        g.model.mirror.center + g.model.mirror.radius * std::exp(logd(rng)) * RandomUnit(rng);
       for (SolverType s : { SolverType::Quartic, SolverType::Iterative })
       {
         const ProjectedPoint q = proj.ProjectCamera(p, s);
-        ASSERT_TRUE(q.pixel.allFinite() && q.mirrorPoint.allFinite() && std::isfinite(q.pathLength));
+        ASSERT_TRUE(
+          q.pixel.allFinite() && q.mirrorPoint.allFinite() && std::isfinite(q.pathLength));
         if (!HasProjection(q.status))
         {
           EXPECT_EQ(q.mirrorPoint, Vec3::Zero());
@@ -282,8 +283,8 @@ TEST_P(Extremes, MillionRadiiAway)
     }
     else
     {
-      EXPECT_TRUE(q.status == ProjectionStatus::HiddenByMirror ||
-        q.status == ProjectionStatus::NoReflection)
+      EXPECT_TRUE(
+        q.status == ProjectionStatus::HiddenByMirror || q.status == ProjectionStatus::NoReflection)
         << ToString(q.status);
       hidden += q.status == ProjectionStatus::HiddenByMirror;
     }
@@ -356,8 +357,8 @@ TEST_P(Extremes, GrazingReflection)
   const Vec3 d(std::sin(gamma), 0, std::cos(gamma));
   const Vec3 r = d * std::sqrt(c.squaredNorm() - R * R);
   const ProjectedPoint q = proj.ProjectCamera(r + 2 * R * d, GetParam());
-  EXPECT_TRUE(q.status == ProjectionStatus::NoReflection ||
-    q.status == ProjectionStatus::HiddenByMirror)
+  EXPECT_TRUE(
+    q.status == ProjectionStatus::NoReflection || q.status == ProjectionStatus::HiddenByMirror)
     << ToString(q.status);
   EXPECT_TRUE(q.mirrorPoint.allFinite() && q.pixel.allFinite());
 }
@@ -380,8 +381,8 @@ TEST_P(Extremes, InvalidInput)
   const SphereProjector badProj(bad);
   EXPECT_FALSE(badProj.IsValid());
   EXPECT_FALSE(badProj.GetError().empty());
-  EXPECT_EQ(badProj.ProjectCamera(Vec3(0.3, 0, 0), GetParam()).status,
-    ProjectionStatus::InvalidInput);
+  EXPECT_EQ(
+    badProj.ProjectCamera(Vec3(0.3, 0, 0), GetParam()).status, ProjectionStatus::InvalidInput);
   EXPECT_EQ(badProj.BackProjectCamera(Vec2(10, 10)).status, ProjectionStatus::InvalidInput);
 }
 
