@@ -11,10 +11,11 @@
 //
 // Range: |coordinate| <= 2^20 px = 2^28 grid units, differences <= 2^29, products <= 2^58, so E
 // (a difference of two products, <= 2^59 in magnitude) is exact in int64 everywhere in the
-// bounding box. The edge functions are stepped incrementally along rows and columns.
+// bounding box. The edge functions are stepped incrementally along rows and columns; as the
+// covered centres of a row are contiguous (convexity), a row stops at the end of its span.
 //
 // Attributes (r, g, b, a, depth) are planes c(x, y) evaluated in double at each covered pixel from
-// the row start value (no accumulation across rows).
+// the row start value (no accumulation across rows or pixels).
 #include "Rasterizer.h"
 
 #include <algorithm>
@@ -64,26 +65,25 @@ std::int64_t CeilToPixel(std::int64_t a)
 
 float Clamp01(float v)
 {
-  return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
+  return std::min(1.0f, std::max(0.0f, v));
 }
 
 float Clamp01(double v)
 {
-  return static_cast<float>(v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v));
+  return static_cast<float>(std::min(1.0, std::max(0.0, v)));
 }
 
-// v >= 0 (up to rounding noise); round to nearest and clamp to 255.
+// v in [0, 255] up to rounding noise (never negative): round to nearest, clamp to 255.
 std::uint8_t ToByte(float v)
 {
-  const int i = static_cast<int>(v + 0.5f);
-  return static_cast<std::uint8_t>(i > 255 ? 255 : (i < 0 ? 0 : i));
+  return static_cast<std::uint8_t>(std::min(static_cast<int>(v + 0.5f), 255));
 }
 
 // Source colour pre-scaled to 0..255 and premultiplied by alpha, plus the destination weight.
 struct BlendSource
 {
-  float r, g, b, a; // 255 * c * alpha (a: 255 * alpha)
-  float keep;       // 1 - alpha
+  float r = 0, g = 0, b = 0, a = 0; // 255 * c * alpha (a: 255 * alpha)
+  float keep = 1;                   // 1 - alpha
 };
 
 BlendSource MakeSource(float r, float g, float b, float a)
@@ -108,135 +108,71 @@ struct Plane
   double dy = 0;     // per row down
 };
 
-// Edge slots: every non-degenerate triangle has one or two edges that bound its rows on the left
-// (stepX > 0: the edge function grows to the right) and one or two on the right (stepX < 0);
-// with only one, the slot pair holds it twice. Horizontal edges (stepX == 0) only limit the rows
-// and are applied to yMin/yMax at setup.
 struct Setup
 {
-  int xMin, xMax, yMin, yMax; // inclusive pixel range to scan (already clipped)
-  std::int64_t w[4];          // biased edge functions at (xMin, yMin): left, left, right, right
-  std::int64_t stepX[4];      // change per pixel to the right (> 0 left, < 0 right)
-  std::int64_t stepY[4];      // change per row down
-  double invStepX[4];         // 1 / |stepX|
-  Plane colour[4];            // r, g, b, a (used when not flat)
-  Plane depth;                // used with a depth buffer
-  BlendSource flat;           // used when flat
-  std::uint8_t flatBytes[4];  // opaque flat colour
-  bool flatOpaque;            // flat and alpha == 1
+  int xMin, xMax, yMin, yMax;     // inclusive pixel range to scan (already clipped)
+  std::int64_t w[3];              // biased edge functions at (xMin, yMin)
+  std::int64_t stepX[3];          // change per pixel to the right
+  std::int64_t stepY[3];          // change per row down
+  Plane colour[4];                // r, g, b, a (used when not flat)
+  Plane depth;                    // used with a depth buffer
+  BlendSource flat;               // used when flat
+  std::uint8_t flatBytes[4] = {}; // opaque flat colour
+  bool opaque = false;            // alpha == 1 at every vertex (so at every pixel)
 };
 
-// Converts a double, already limited to a few units beyond [0, last], to int64 by floor or ceil.
-inline std::int64_t FloorSmall(double v)
-{
-  const std::int64_t t = static_cast<std::int64_t>(v);
-  return t - (static_cast<double>(t) > v ? 1 : 0);
-}
-
-inline std::int64_t CeilSmall(double v)
-{
-  const std::int64_t t = static_cast<std::int64_t>(v);
-  return t + (static_cast<double>(t) < v ? 1 : 0);
-}
-
-// Columns [lo, hi] (offsets from xMin, inclusive) of a row whose biased edge functions at xMin are
-// w, i.e. the k in [0, last] with w[i] + k * stepX[i] >= 0 for all slots; false if none.
-// Each crossing is estimated in double (|error| < 1 once clamped to [-2, last + 2]) and then
-// corrected by exact integer tests (no overflow: |w| < 2^60, |stepX * k| < 2^59), so the span is
-// exact; there is no data-dependent branch except the final emptiness test.
-inline bool RowSpan(const std::int64_t w[4], const Setup& s, std::int64_t last, int& lo, int& hi)
-{
-  const double lim = static_cast<double>(last) + 2.0;
-  std::int64_t l = 0;
-  std::int64_t h = last;
-  for (int i = 0; i < 2; ++i) // left: smallest k with w + stepX k >= 0, i.e. ceil(-w / stepX)
-  {
-    const std::int64_t st = s.stepX[i];
-    const double kd = std::min(lim, std::max(-2.0, -static_cast<double>(w[i]) * s.invStepX[i]));
-    std::int64_t k = CeilSmall(kd);
-    k -= (w[i] + st * (k - 1) >= 0) ? 1 : 0;
-    k += (w[i] + st * k < 0) ? 1 : 0;
-    l = std::max(l, k);
-  }
-  for (int i = 2; i < 4; ++i) // right: largest k with w + stepX k >= 0, i.e. floor(w / -stepX)
-  {
-    const std::int64_t st = s.stepX[i];
-    const double kd = std::min(lim, std::max(-2.0, static_cast<double>(w[i]) * s.invStepX[i]));
-    std::int64_t k = FloorSmall(kd);
-    k += (w[i] + st * (k + 1) >= 0) ? 1 : 0;
-    k -= (w[i] + st * k < 0) ? 1 : 0;
-    h = std::min(h, k);
-  }
-  if (l > h)
-  {
-    return false;
-  }
-  lo = static_cast<int>(l);
-  hi = static_cast<int>(h);
-  return true;
-}
-
-// Scans the bounding box; returns true when at least one pixel centre is covered.
-template <bool kFlat, bool kDepth>
+// Scans the bounding box; returns true when at least one pixel centre is covered. Everything
+// the inner loop needs is copied to locals first: stores through the uint8_t pixel pointer may
+// alias anything, which would otherwise force reloads from s.
+template<bool kFlat, bool kDepth>
 bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
 {
+  const int xMin = s.xMin;
+  const int xMax = s.xMax;
+  const std::int64_t sx0 = s.stepX[0], sx1 = s.stepX[1], sx2 = s.stepX[2];
+  const std::int64_t sy0 = s.stepY[0], sy1 = s.stepY[1], sy2 = s.stepY[2];
+  const BlendSource flat = s.flat;
+  const bool opaque = s.opaque;
+  std::uint32_t packed;
+  std::memcpy(&packed, s.flatBytes, 4);
+  const Plane cr = s.colour[0], cg = s.colour[1], cb = s.colour[2], ca = s.colour[3];
+  const Plane cz = s.depth;
+
   bool any = false;
-  std::int64_t w[4] = { s.w[0], s.w[1], s.w[2], s.w[3] };
-  const std::int64_t last = s.xMax - s.xMin;
-  for (int y = s.yMin; y <= s.yMax; ++y)
+  std::int64_t r0 = s.w[0], r1 = s.w[1], r2 = s.w[2];
+  for (int y = s.yMin; y <= s.yMax; ++y, r0 += sy0, r1 += sy1, r2 += sy2)
   {
-    int lo, hi;
-    const bool covered = RowSpan(w, s, last, lo, hi);
-    for (int i = 0; i < 4; ++i)
-    {
-      w[i] += s.stepY[i];
-    }
-    if (!covered)
-    {
-      continue;
-    }
-    any = true;
-    std::uint8_t* row = img.pixel(s.xMin, y);
-    float* zRow = kDepth ? depthView->at(s.xMin, y) : nullptr;
+    std::int64_t w0 = r0, w1 = r1, w2 = r2;
+    std::uint8_t* p = img.pixel(xMin, y);
+    float* zp = kDepth ? depthView->at(xMin, y) : nullptr;
     const double rowIndex = static_cast<double>(y - s.yMin);
-    double cRow[4] = { 0, 0, 0, 0 };
-    if (!kFlat)
+    const double rRow = kFlat ? 0.0 : cr.origin + cr.dy * rowIndex;
+    const double gRow = kFlat ? 0.0 : cg.origin + cg.dy * rowIndex;
+    const double bRow = kFlat ? 0.0 : cb.origin + cb.dy * rowIndex;
+    const double aRow = kFlat ? 0.0 : ca.origin + ca.dy * rowIndex;
+    const double zRow = kDepth ? cz.origin + cz.dy * rowIndex : 0.0;
+    bool inSpan = false;
+    for (int x = xMin; x <= xMax; ++x, w0 += sx0, w1 += sx1, w2 += sx2, p += 4)
     {
-      for (int c = 0; c < 4; ++c)
+      if ((w0 | w1 | w2) < 0)
       {
-        cRow[c] = s.colour[c].origin + s.colour[c].dy * rowIndex;
+        if (inSpan)
+        {
+          break; // convex: the span of this row is over
+        }
+        continue;
       }
-    }
-    const double zRowValue = kDepth ? s.depth.origin + s.depth.dy * rowIndex : 0.0;
-    std::uint8_t* p = row + 4 * static_cast<std::ptrdiff_t>(lo);
-    if (kFlat && !kDepth && s.flatOpaque)
-    {
-      std::uint32_t packed; // local copy: stores through p may alias s
-      std::memcpy(&packed, s.flatBytes, 4);
-      for (int k = lo; k <= hi; ++k, p += 4)
-      {
-        std::memcpy(p, &packed, 4);
-      }
-      continue;
-    }
-    const BlendSource flat = s.flat;
-    const bool opaque = s.flatOpaque;
-    std::uint32_t packed;
-    std::memcpy(&packed, s.flatBytes, 4);
-    const double zdx = s.depth.dx;
-    const double cdx[4] = { s.colour[0].dx, s.colour[1].dx, s.colour[2].dx, s.colour[3].dx };
-    for (int k = lo; k <= hi; ++k, p += 4)
-    {
-      const double col = static_cast<double>(k);
+      inSpan = true;
+      const double k = static_cast<double>(x - xMin);
       if (kDepth)
       {
-        const float z = static_cast<float>(zRowValue + zdx * col);
-        float* zp = zRow + k;
-        if (!(z < *zp))
+        const float z = static_cast<float>(zRow + cz.dx * k);
+        float* zq = zp + (x - xMin);
+        if (!(z < *zq))
         {
           continue;
         }
-        *zp = z;
+        *zq = z;
       }
       if (kFlat)
       {
@@ -251,13 +187,23 @@ bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
       }
       else
       {
-        const float r = Clamp01(cRow[0] + cdx[0] * col);
-        const float g = Clamp01(cRow[1] + cdx[1] * col);
-        const float b = Clamp01(cRow[2] + cdx[2] * col);
-        const float a = Clamp01(cRow[3] + cdx[3] * col);
-        Blend(p, MakeSource(r, g, b, a));
+        const float r = Clamp01(rRow + cr.dx * k);
+        const float g = Clamp01(gRow + cg.dx * k);
+        const float b = Clamp01(bRow + cb.dx * k);
+        if (opaque) // out = round(255 c), alpha 255, whatever was there
+        {
+          p[0] = ToByte(255.0f * r);
+          p[1] = ToByte(255.0f * g);
+          p[2] = ToByte(255.0f * b);
+          p[3] = 255;
+        }
+        else
+        {
+          Blend(p, MakeSource(r, g, b, Clamp01(aRow + ca.dx * k)));
+        }
       }
     }
+    any = any || inSpan;
   }
   return any;
 }
@@ -306,7 +252,7 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     X[i] = Snap(v[i]->x);
     Y[i] = Snap(v[i]->y);
   }
-  std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
+  const std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
   if (area == 0)
   {
     return RasterResult::Degenerate;
@@ -316,7 +262,6 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     std::swap(v[1], v[2]);
     std::swap(X[1], X[2]);
     std::swap(Y[1], Y[2]);
-    area = -area;
   }
 
   // Bounding box of the covered pixel centres, clipped to the clip rectangle and the image.
@@ -338,12 +283,9 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     return RasterResult::Empty;
   }
 
-  // Edge i is the one opposite vertex i: a = vertex i+1, b = vertex i+2. Edges are sorted into
-  // the left/right slots; horizontal edges narrow the row range.
+  // Edge i is the one opposite vertex i: a = vertex i+1, b = vertex i+2.
   const std::int64_t px = static_cast<std::int64_t>(s.xMin) * kOne;
   const std::int64_t py = static_cast<std::int64_t>(s.yMin) * kOne;
-  const int yMin0 = s.yMin;
-  int nLeft = 0, nRight = 0;
   for (int i = 0; i < 3; ++i)
   {
     const int a = (i + 1) % 3;
@@ -351,54 +293,9 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     const std::int64_t ex = X[b] - X[a];
     const std::int64_t ey = Y[b] - Y[a];
     const bool topLeft = ey < 0 || (ey == 0 && ex > 0);
-    const std::int64_t w = ex * (py - Y[a]) - ey * (px - X[a]) - (topLeft ? 0 : 1);
-    const std::int64_t stepY = ex * kOne;
-    if (ey == 0)
-    {
-      // w(y) = w + stepY (y - yMin) >= 0. Top edge (stepY > 0): from row yMin + ceil(-w / stepY);
-      // bottom edge (stepY < 0): up to row yMin + floor(w / -stepY).
-      if (stepY > 0)
-      {
-        if (w < 0)
-        {
-          s.yMin = std::max(s.yMin, yMin0 + static_cast<int>((-w + stepY - 1) / stepY));
-        }
-      }
-      else if (w < 0)
-      {
-        return RasterResult::Empty;
-      }
-      else
-      {
-        s.yMax = static_cast<int>(std::min<std::int64_t>(s.yMax, yMin0 + w / -stepY));
-      }
-      continue;
-    }
-    const int slot = ey < 0 ? nLeft++ : 2 + nRight++;
-    s.w[slot] = w;
-    s.stepX[slot] = -ey * kOne;
-    s.stepY[slot] = stepY;
-    s.invStepX[slot] = 1.0 / static_cast<double>(std::abs(ey) * kOne);
-  }
-  if (nLeft == 1)
-  {
-    s.w[1] = s.w[0], s.stepX[1] = s.stepX[0], s.stepY[1] = s.stepY[0];
-    s.invStepX[1] = s.invStepX[0];
-  }
-  if (nRight == 1)
-  {
-    s.w[3] = s.w[2], s.stepX[3] = s.stepX[2], s.stepY[3] = s.stepY[2];
-    s.invStepX[3] = s.invStepX[2];
-  }
-  if (s.yMin > s.yMax)
-  {
-    return RasterResult::Empty;
-  }
-  // Rows skipped at the top by a top edge: move the slot values down to the new yMin.
-  const std::int64_t skipped = s.yMin - yMin0;
-  for (int i = 0; i < 4; ++i)
-  {
-    s.w[i] += skipped * s.stepY[i];
+    s.w[i] = ex * (py - Y[a]) - ey * (px - X[a]) - (topLeft ? 0 : 1);
+    s.stepX[i] = -ey * kOne;
+    s.stepY[i] = ex * kOne;
   }
 
   // Attribute planes in pixel units, relative to the (snapped) vertex 0.
@@ -410,8 +307,7 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const double invArea = 1.0 / (x10 * y20 - y10 * x20);
   const double ox = static_cast<double>(s.xMin) - static_cast<double>(X[0]) * inv;
   const double oy = static_cast<double>(s.yMin) - static_cast<double>(Y[0]) * inv;
-  auto makePlane = [&](double c0, double c1, double c2)
-  {
+  auto makePlane = [&](double c0, double c1, double c2) {
     const double d1 = c1 - c0;
     const double d2 = c2 - c0;
     Plane p;
@@ -434,10 +330,10 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   {
     flat = flat && col[0][c] == col[1][c] && col[0][c] == col[2][c];
   }
+  s.opaque = col[0][3] == 1.0f && col[1][3] == 1.0f && col[2][3] == 1.0f;
   if (flat)
   {
     s.flat = MakeSource(col[0][0], col[0][1], col[0][2], col[0][3]);
-    s.flatOpaque = col[0][3] == 1.0f;
     s.flatBytes[0] = ToByte(s.flat.r);
     s.flatBytes[1] = ToByte(s.flat.g);
     s.flatBytes[2] = ToByte(s.flat.b);
@@ -449,7 +345,6 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     {
       s.colour[c] = makePlane(col[0][c], col[1][c], col[2][c]);
     }
-    s.flatOpaque = false;
   }
   if (depth)
   {

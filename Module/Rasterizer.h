@@ -107,8 +107,9 @@ enum class RasterResult
 const char* toString(RasterResult result);
 
 /// Draws one triangle (either winding) with colours interpolated linearly in screen space
-/// (Gouraud; equal vertex colours take a flat-shading fast path), composited source-over onto
-/// target (see the conventions above). Coverage follows the top-left rule on the 1/256 grid.
+/// (Gouraud, planes through the snapped vertex positions; equal vertex colours take a
+/// flat-shading fast path), composited source-over onto target (see the conventions above).
+/// Coverage follows the top-left rule on the 1/256 grid.
 /// depth: if non-null, the per-pixel depth (interpolated linearly in screen space from the vertex
 /// depths, stored as float) is tested -- a pixel is drawn only if it is strictly less than the
 /// stored value -- and written where drawn.
