@@ -33,6 +33,7 @@ struct CellWorker
   const unsigned char* PointVisible;
   const double* Pixels;
   double* Depth;
+  double* CentroidMirror;
   unsigned char* Visible;
   vtkIdType CellOffset; // cell-data index of the first polygon
   double Width;
@@ -47,6 +48,7 @@ struct CellWorker
       const vtkIdType out = this->CellOffset + c;
       this->Depth[out] = 0.0;
       this->Visible[out] = 0;
+      std::fill(this->CentroidMirror + 3 * out, this->CentroidMirror + 3 * out + 3, 0.0);
       const vtkIdType n = static_cast<vtkIdType>(ids.size());
       if (n < 3)
       {
@@ -82,6 +84,7 @@ struct CellWorker
         continue;
       }
       this->Depth[out] = q.pathLength;
+      std::copy(q.mirrorPoint.data(), q.mirrorPoint.data() + 3, this->CentroidMirror + 3 * out);
       const bool overlapsImage =
         xmax >= -0.5 && ymax >= -0.5 && xmin < this->Width - 0.5 && ymin < this->Height - 0.5;
       this->Visible[out] = overlapsImage ? 1 : 0;
@@ -192,6 +195,11 @@ int vtkCatadioptricProjection::RequestData(
   depth->SetName("CentroidDepth");
   depth->SetNumberOfTuples(nCells);
   depth->FillValue(0.0);
+  vtkNew<vtkDoubleArray> centroidMirror;
+  centroidMirror->SetName("CentroidMirrorPoint");
+  centroidMirror->SetNumberOfComponents(3);
+  centroidMirror->SetNumberOfTuples(nCells);
+  centroidMirror->FillValue(0.0);
   vtkNew<vtkUnsignedCharArray> cvis;
   cvis->SetName("Visible");
   cvis->SetNumberOfTuples(nCells);
@@ -209,6 +217,7 @@ int vtkCatadioptricProjection::RequestData(
     worker.PointVisible = pvis->GetPointer(0);
     worker.Pixels = pixels->GetPointer(0);
     worker.Depth = depth->GetPointer(0);
+    worker.CentroidMirror = centroidMirror->GetPointer(0);
     worker.Visible = cvis->GetPointer(0);
     worker.CellOffset = input->GetNumberOfVerts() + input->GetNumberOfLines();
     worker.Width = camera->GetImageWidth();
@@ -217,6 +226,7 @@ int vtkCatadioptricProjection::RequestData(
   }
   vtkCellData* cd = output->GetCellData();
   cd->AddArray(depth);
+  cd->AddArray(centroidMirror);
   cd->AddArray(cvis);
   this->UpdateProgress(1.0);
   return 1;

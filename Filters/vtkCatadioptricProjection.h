@@ -8,7 +8,8 @@
  *    point to vertex), ProjectionStatus (uint8, vtkCatadioptricCamera::StatusCodes) and Visible
  *    (uint8: 1 when the vertex has a reflection and a pixel, inside the image or not);
  *  - cell data: CentroidDepth (the distance from the cell centroid to the centroid's own reflection
- *    point, the painter key of the method) and Visible (uint8: 1 when every vertex and the
+ *    point, the painter key of the method), CentroidMirrorPoint (3, camera frame: that reflection
+ *    point, the viewer of flat shading) and Visible (uint8: 1 when every vertex and the
  *    centroid project and the cell's pixel bounding box meets the image);
  *  - field data: the camera (vtkCatadioptricCamera::WriteToFieldData).
  * Vertices and lines are passed through with Visible 0. Work is split over points and cells with

@@ -3,6 +3,7 @@
 #include "Rasterizer.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricColorArray.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -23,38 +24,6 @@ vtkStandardNewMacro(vtkCatadioptricCompositor);
 
 namespace
 {
-// Reads RGBA in [0,1] from a colour array (uchar 0-255 or floating 0-1; 1 to 4 components).
-struct ColorSource
-{
-  vtkDataArray* Array = nullptr;
-  bool PerPoint = false;
-  bool Bytes = false;
-  int Components = 0;
-  float Solid[4] = { 1, 1, 1, 1 };
-
-  void Get(vtkIdType pointId, vtkIdType cellId, float rgba[4]) const
-  {
-    if (!this->Array)
-    {
-      std::copy(this->Solid, this->Solid + 4, rgba);
-      return;
-    }
-    const vtkIdType id = this->PerPoint ? pointId : cellId;
-    const double scale = this->Bytes ? 1.0 / 255.0 : 1.0;
-    float v[4] = { 0, 0, 0, 1 };
-    for (int k = 0; k < this->Components && k < 4; ++k)
-    {
-      v[k] = static_cast<float>(this->Array->GetComponent(id, k) * scale);
-    }
-    if (this->Components < 3) // grey (+ alpha)
-    {
-      v[3] = this->Components == 2 ? v[1] : 1.0f;
-      v[1] = v[2] = v[0];
-    }
-    std::copy(v, v + 4, rgba);
-  }
-};
-
 struct Triangle
 {
   catar::RasterVertex V[3];
@@ -284,31 +253,13 @@ int vtkCatadioptricCompositor::RequestData(
                                "vtkCatadioptricProjection first.");
       return 0;
     }
-    ColorSource color;
-    for (int k = 0; k < 3; ++k)
+    const float solid[4] = { static_cast<float>(this->Color[0]),
+      static_cast<float>(this->Color[1]), static_cast<float>(this->Color[2]), 1.0f };
+    const vtkCatadioptricColorArray color(mesh, this->ColorArrayName, solid);
+    if (color.HasArray() && color.GetNumberOfComponents() < 1)
     {
-      color.Solid[k] = static_cast<float>(this->Color[k]);
-    }
-    if (this->ColorArrayName && *this->ColorArrayName)
-    {
-      if ((color.Array = mesh->GetPointData()->GetArray(this->ColorArrayName)))
-      {
-        color.PerPoint = true;
-      }
-      else
-      {
-        color.Array = mesh->GetCellData()->GetArray(this->ColorArrayName);
-      }
-      if (color.Array)
-      {
-        color.Bytes = color.Array->GetDataType() == VTK_UNSIGNED_CHAR;
-        color.Components = color.Array->GetNumberOfComponents();
-        if (color.Components > 4)
-        {
-          vtkWarningMacro("Colour array " << this->ColorArrayName << " has " << color.Components
-                                          << " components; using the first 4.");
-        }
-      }
+      vtkErrorMacro("Colour array " << this->ColorArrayName << " has no components.");
+      return 0;
     }
     const float opacity = static_cast<float>(this->Opacity);
     const vtkIdType first = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();

@@ -1,0 +1,450 @@
+#include "vtkCatadioptricLighting.h"
+
+#include "CameraModel.h"
+#include "Lighting.h"
+#include "RayScene.h"
+
+#include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricColorArray.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkSMPTools.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkCatadioptricLighting);
+
+namespace
+{
+catar::Vec3 V3(const double* v)
+{
+  return catar::Vec3(v[0], v[1], v[2]);
+}
+
+std::vector<catar::LightSource> ConvertLights(vtkLightCollection* lights)
+{
+  std::vector<catar::LightSource> out;
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* l = lights->GetNextLight(it))
+  {
+    if (!l->GetSwitch())
+    {
+      continue;
+    }
+    catar::LightSource s;
+    if (!l->GetPositional())
+    {
+      s.kind = catar::LightSource::Kind::Directional;
+    }
+    else
+    {
+      s.kind = l->GetConeAngle() < 90.0 ? catar::LightSource::Kind::Spot
+                                        : catar::LightSource::Kind::Point;
+    }
+    s.position = V3(l->GetPosition());
+    s.focalPoint = V3(l->GetFocalPoint());
+    const double i = l->GetIntensity();
+    s.ambient = i * V3(l->GetAmbientColor());
+    s.diffuse = i * V3(l->GetDiffuseColor());
+    s.specular = i * V3(l->GetSpecularColor());
+    s.coneAngle = l->GetConeAngle();
+    s.exponent = l->GetExponent();
+    s.attenuation = V3(l->GetAttenuationValues());
+    out.push_back(s);
+  }
+  return out;
+}
+
+// Area-weighted vertex normals (Newell normals of the polygons, summed at their vertices).
+std::vector<catar::Vec3> VertexNormals(vtkPolyData* mesh)
+{
+  std::vector<catar::Vec3> normals(mesh->GetNumberOfPoints(), catar::Vec3::Zero());
+  vtkCellArray* polys = mesh->GetPolys();
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  {
+    polys->GetCellAtId(c, ids);
+    const vtkIdType n = ids->GetNumberOfIds();
+    catar::Vec3 area = catar::Vec3::Zero();
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      double a[3], b[3];
+      mesh->GetPoint(ids->GetId(k), a);
+      mesh->GetPoint(ids->GetId((k + 1) % n), b);
+      area += V3(a).cross(V3(b));
+    }
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      normals[ids->GetId(k)] += area;
+    }
+  }
+  for (catar::Vec3& v : normals)
+  {
+    const double len = v.norm();
+    v = len > 0 ? catar::Vec3(v / len) : catar::Vec3(0, 0, 1);
+  }
+  return normals;
+}
+
+unsigned char ToByte(double v)
+{
+  return static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, v))));
+}
+} // namespace
+
+struct vtkCatadioptricLighting::Internals
+{
+  catar::RayScene Scene;
+  vtkPoints* Points = nullptr;
+  vtkMTimeType PointsTime = 0;
+  vtkMTimeType PolysTime = 0;
+  bool Built = false;
+
+  // Builds (or keeps) the ray scene of the mesh's triangles.
+  bool Update(vtkPolyData* mesh, std::string& error)
+  {
+    vtkPoints* pts = mesh->GetPoints();
+    if (this->Built && pts == this->Points && pts->GetMTime() == this->PointsTime &&
+      mesh->GetPolys()->GetMTime() == this->PolysTime)
+    {
+      return true;
+    }
+    std::vector<float> xyz(3 * static_cast<size_t>(mesh->GetNumberOfPoints()));
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      mesh->GetPoint(i, p);
+      for (int k = 0; k < 3; ++k)
+      {
+        xyz[3 * i + k] = static_cast<float>(p[k]);
+      }
+    }
+    std::vector<std::uint32_t> tris;
+    vtkNew<vtkIdList> ids;
+    vtkCellArray* polys = mesh->GetPolys();
+    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+    {
+      polys->GetCellAtId(c, ids);
+      for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
+      {
+        tris.push_back(static_cast<std::uint32_t>(ids->GetId(0)));
+        tris.push_back(static_cast<std::uint32_t>(ids->GetId(k)));
+        tris.push_back(static_cast<std::uint32_t>(ids->GetId(k + 1)));
+      }
+    }
+    this->Built = this->Scene.Build(xyz, tris);
+    if (!this->Built)
+    {
+      error = this->Scene.GetError();
+      return false;
+    }
+    this->Points = pts;
+    this->PointsTime = pts->GetMTime();
+    this->PolysTime = polys->GetMTime();
+    return true;
+  }
+};
+
+vtkCatadioptricLighting::vtkCatadioptricLighting()
+  : Lights(vtkSmartPointer<vtkLightCollection>::New())
+  , Property(vtkSmartPointer<vtkProperty>::New())
+  , Internal(new Internals)
+{
+  this->SetInputColorArrayName("Colors");
+  this->Property->SetSpecular(0.0);
+}
+
+vtkCatadioptricLighting::~vtkCatadioptricLighting()
+{
+  this->SetInputColorArrayName(nullptr);
+}
+
+void vtkCatadioptricLighting::AddLight(vtkLight* light)
+{
+  if (light)
+  {
+    this->Lights->AddItem(light);
+    this->Modified();
+  }
+}
+
+void vtkCatadioptricLighting::RemoveAllLights()
+{
+  this->Lights->RemoveAllItems();
+  this->Modified();
+}
+
+vtkLightCollection* vtkCatadioptricLighting::GetLights()
+{
+  return this->Lights;
+}
+
+void vtkCatadioptricLighting::SetLights(vtkLightCollection* lights)
+{
+  this->Lights = lights ? lights : vtkSmartPointer<vtkLightCollection>::New().GetPointer();
+  this->Modified();
+}
+
+void vtkCatadioptricLighting::SetProperty(vtkProperty* property)
+{
+  this->Property = property ? property : vtkSmartPointer<vtkProperty>::New().GetPointer();
+  this->Modified();
+}
+
+vtkProperty* vtkCatadioptricLighting::GetProperty()
+{
+  return this->Property;
+}
+
+vtkMTimeType vtkCatadioptricLighting::GetMTime()
+{
+  vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Lights->GetMTime());
+  t = std::max(t, this->Property->GetMTime());
+  vtkCollectionSimpleIterator it;
+  this->Lights->InitTraversal(it);
+  while (vtkLight* l = this->Lights->GetNextLight(it))
+  {
+    t = std::max(t, l->GetMTime());
+  }
+  return t;
+}
+
+int vtkCatadioptricLighting::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Input and output must be vtkPolyData.");
+    return 0;
+  }
+  output->ShallowCopy(input);
+  const vtkIdType nPts = input->GetNumberOfPoints();
+  if (nPts == 0)
+  {
+    return 1;
+  }
+  vtkNew<vtkCatadioptricCamera> camera;
+  vtkDataArray* mirror = input->GetPointData()->GetArray("MirrorPoint");
+  vtkDataArray* pointVisible = input->GetPointData()->GetArray("Visible");
+  vtkDataArray* centroidMirror = input->GetCellData()->GetArray("CentroidMirrorPoint");
+  vtkDataArray* cellVisible = input->GetCellData()->GetArray("Visible");
+  if (!camera->ReadFromFieldData(input->GetFieldData()) || !mirror || !pointVisible ||
+    !cellVisible || (this->ShadingMode == FLAT && !centroidMirror))
+  {
+    vtkErrorMacro("The input was not projected: run vtkCatadioptricProjection before "
+                  "vtkCatadioptricLighting.");
+    return 0;
+  }
+  const catar::CameraModel model = camera->GetModel();
+
+  // Material and base colours.
+  vtkProperty* prop = this->Property;
+  catar::Material material;
+  material.ambient = prop->GetAmbient() * V3(prop->GetAmbientColor());
+  material.diffuse = prop->GetDiffuse() * V3(prop->GetDiffuseColor());
+  material.specular = prop->GetSpecular() * V3(prop->GetSpecularColor());
+  material.emission = V3(this->Emission);
+  material.shininess = prop->GetSpecularPower();
+  const double opacity = prop->GetOpacity();
+  const float solid[4] = { static_cast<float>(prop->GetDiffuseColor()[0]),
+    static_cast<float>(prop->GetDiffuseColor()[1]), static_cast<float>(prop->GetDiffuseColor()[2]),
+    1.0f };
+  const vtkCatadioptricColorArray base(input, this->InputColorArrayName, solid);
+  const std::vector<catar::LightSource> lights = ConvertLights(this->Lights);
+  const catar::Vec3 globalAmbient = V3(this->GlobalAmbient);
+  const bool twoSided = this->TwoSidedLighting;
+  const int mode = this->ShadingMode;
+
+  // Shadows: the mesh's own triangles.
+  const bool shadows = this->Shadows && mode != NONE && !lights.empty();
+  if (shadows)
+  {
+    std::string error;
+    if (!this->Internal->Update(input, error))
+    {
+      vtkErrorMacro("Cannot build the shadow ray scene: " << error);
+      return 0;
+    }
+  }
+  const catar::RayScene& scene = this->Internal->Scene;
+  const double offset = 1e-4 * scene.GetSceneSize();
+  this->UpdateProgress(0.1);
+
+  // The colour of point p with normal n seen from viewer (all world), base colour rgba.
+  auto shade = [&](const catar::Vec3& p, catar::Vec3 n, const catar::Vec3& viewer,
+                 const float rgba[4], std::vector<unsigned char>& lit) {
+    catar::Material m = material;
+    if (base.HasArray())
+    {
+      const catar::Vec3 c(rgba[0], rgba[1], rgba[2]);
+      m.ambient = prop->GetAmbient() * c;
+      m.diffuse = prop->GetDiffuse() * c;
+    }
+    if (twoSided && n.dot(viewer - p) < 0)
+    {
+      n = -n;
+    }
+    if (shadows)
+    {
+      const catar::Vec3 start = p + offset * n;
+      for (size_t k = 0; k < lights.size(); ++k)
+      {
+        const catar::LightSource& l = lights[k];
+        const catar::Vec3 target = l.kind == catar::LightSource::Kind::Directional
+          ? catar::Vec3(start + 2.0 * scene.GetSceneSize() * catar::DirectionToLight(l, p))
+          : l.position;
+        lit[k] = scene.Occluded(start, target, 0.5 * offset) ? 0 : 1;
+      }
+    }
+    return catar::Shade(p, n, viewer, lights, m, globalAmbient, shadows ? lit.data() : nullptr,
+      false);
+  };
+
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(4);
+  if (mode == GOURAUD)
+  {
+    std::vector<catar::Vec3> normals;
+    vtkDataArray* inNormals = input->GetPointData()->GetNormals();
+    if (!inNormals || inNormals->GetNumberOfComponents() != 3)
+    {
+      normals = VertexNormals(input);
+    }
+    colors->SetNumberOfTuples(nPts);
+    unsigned char* out = colors->GetPointer(0);
+    vtkSMPTools::For(0, nPts, [&](vtkIdType b, vtkIdType e) {
+      std::vector<unsigned char> lit(lights.size(), 1);
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        unsigned char* o = out + 4 * i;
+        if (pointVisible->GetComponent(i, 0) == 0)
+        {
+          std::fill(o, o + 4, 0);
+          continue;
+        }
+        double p[3], mp[3], nn[3];
+        input->GetPoint(i, p);
+        mirror->GetTuple(i, mp);
+        catar::Vec3 n;
+        if (normals.empty())
+        {
+          inNormals->GetTuple(i, nn);
+          n = V3(nn).normalized();
+        }
+        else
+        {
+          n = normals[i];
+        }
+        float rgba[4];
+        base.Get(i, 0, rgba);
+        const catar::Vec3 c = shade(V3(p), n, model.CameraToWorld(V3(mp)), rgba, lit);
+        o[0] = ToByte(c.x());
+        o[1] = ToByte(c.y());
+        o[2] = ToByte(c.z());
+        o[3] = ToByte(opacity * rgba[3]);
+      }
+    });
+    output->GetCellData()->RemoveArray("Colors");
+    output->GetPointData()->RemoveArray("Colors");
+    output->GetPointData()->AddArray(colors);
+  }
+  else
+  {
+    const vtkIdType nCells = input->GetNumberOfCells();
+    const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
+    colors->SetNumberOfTuples(nCells);
+    colors->FillValue(0);
+    unsigned char* out = colors->GetPointer(0);
+    vtkCellArray* polys = input->GetPolys();
+    vtkSMPTools::For(0, polys->GetNumberOfCells(), [&](vtkIdType b, vtkIdType e) {
+      std::vector<unsigned char> lit(lights.size(), 1);
+      vtkNew<vtkIdList> ids;
+      for (vtkIdType c = b; c < e; ++c)
+      {
+        const vtkIdType cellId = first + c;
+        if (cellVisible->GetComponent(cellId, 0) == 0)
+        {
+          continue;
+        }
+        polys->GetCellAtId(c, ids);
+        const vtkIdType n = ids->GetNumberOfIds();
+        catar::Vec3 centroid = catar::Vec3::Zero();
+        catar::Vec3 area = catar::Vec3::Zero();
+        for (vtkIdType k = 0; k < n; ++k)
+        {
+          double a[3], q[3];
+          input->GetPoint(ids->GetId(k), a);
+          input->GetPoint(ids->GetId((k + 1) % n), q);
+          centroid += V3(a);
+          area += V3(a).cross(V3(q));
+        }
+        centroid /= static_cast<double>(n);
+        // Base colour: a cell colour, or the mean of the point colours.
+        float rgba[4] = { 0, 0, 0, 0 };
+        for (vtkIdType k = 0; k < (base.IsPerPoint() ? n : 1); ++k)
+        {
+          float v[4];
+          base.Get(ids->GetId(k), cellId, v);
+          for (int j = 0; j < 4; ++j)
+          {
+            rgba[j] += v[j] / (base.IsPerPoint() ? n : 1);
+          }
+        }
+        catar::Vec3 color(rgba[0], rgba[1], rgba[2]);
+        if (mode == FLAT)
+        {
+          const double len = area.norm();
+          const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
+          double cm[3];
+          centroidMirror->GetTuple(cellId, cm);
+          color = shade(centroid, normal, model.CameraToWorld(V3(cm)), rgba, lit);
+        }
+        unsigned char* o = out + 4 * cellId;
+        o[0] = ToByte(color.x());
+        o[1] = ToByte(color.y());
+        o[2] = ToByte(color.z());
+        o[3] = ToByte(opacity * rgba[3]);
+      }
+    });
+    output->GetPointData()->RemoveArray("Colors");
+    output->GetCellData()->RemoveArray("Colors");
+    output->GetCellData()->AddArray(colors);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkCatadioptricLighting::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  static const char* const modes[] = { "None", "Flat", "Gouraud" };
+  os << indent << "ShadingMode: " << modes[this->ShadingMode] << "\n";
+  os << indent << "Shadows: " << (this->Shadows ? "On" : "Off") << "\n";
+  os << indent << "TwoSidedLighting: " << (this->TwoSidedLighting ? "On" : "Off") << "\n";
+  os << indent << "GlobalAmbient: " << this->GlobalAmbient[0] << ", " << this->GlobalAmbient[1]
+     << ", " << this->GlobalAmbient[2] << "\n";
+  os << indent << "Emission: " << this->Emission[0] << ", " << this->Emission[1] << ", "
+     << this->Emission[2] << "\n";
+  os << indent << "InputColorArrayName: "
+     << (this->InputColorArrayName ? this->InputColorArrayName : "(none)") << "\n";
+  os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
+}

@@ -1,0 +1,138 @@
+/**
+ * @class   vtkCatadioptricLighting
+ * @brief   Phong lighting of a projected mesh, with the viewer at each point's reflection point
+ *
+ * The input is the output of vtkCatadioptricProjection (it needs MirrorPoint, and for flat
+ * shading CentroidMirrorPoint, and the camera in field data). The output is the input plus a
+ * colour array named "Colors" (RGBA, unsigned char) that vtkCatadioptricCompositor draws:
+ *  - GOURAUD: point data, one colour per vertex, lit at the vertex with its normal and seen from
+ *    the vertex's own reflection point (interpolated across each triangle by the compositor);
+ *  - FLAT: cell data, one colour per cell, lit at the centroid with the face normal and seen from
+ *    the centroid's own reflection point;
+ *  - NONE: cell data, the unlit base colour (the paper's "blob").
+ * The equation is in Module/Lighting.h (the paper's equation 12). Lights are vtkLights in world
+ * coordinates: not positional = directional; positional with ConeAngle < 90 = spotlight (cone
+ * half angle ConeAngle, Exponent, AttenuationValues); otherwise a point light. Colours are
+ * multiplied by Intensity; lights switched off are ignored. The material is a vtkProperty:
+ * Ka = Ambient * AmbientColor, Kd = Diffuse * DiffuseColor, Ks = Specular * SpecularColor,
+ * shininess = SpecularPower, alpha = Opacity; Emission is set here.
+ *
+ * Base colours: when the input has an array named InputColorArrayName (point or cell data, RGB(A),
+ * unsigned char 0-255 or floating 0-1), it replaces the material's ambient and diffuse colours per
+ * point/cell (so a box with a colour per face is lit face by face).
+ *
+ * Shadows: with Shadows on, a light contributes its diffuse and specular terms only where the
+ * segment from the surface point to the light is free (Embree ray queries against the input's own
+ * triangles; the acceleration structure is kept while the input geometry does not change).
+ *
+ * Points and cells that are not visible are left black. Work is split with vtkSMPTools.
+ */
+#ifndef vtkCatadioptricLighting_h
+#define vtkCatadioptricLighting_h
+
+#include "CatadioptricARFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // for members
+
+#include <memory> // for std::unique_ptr
+
+class vtkLight;
+class vtkLightCollection;
+class vtkProperty;
+
+class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricLighting : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkCatadioptricLighting* New();
+  vtkTypeMacro(vtkCatadioptricLighting, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The lights (world coordinates).
+  void AddLight(vtkLight* light);
+  void RemoveAllLights();
+  vtkLightCollection* GetLights();
+  void SetLights(vtkLightCollection* lights);
+  ///@}
+
+  ///@{
+  /// The material. A default vtkProperty (grey, no specular) is created.
+  void SetProperty(vtkProperty* property);
+  vtkProperty* GetProperty();
+  ///@}
+
+  /// Shading modes.
+  enum ShadingModes
+  {
+    NONE = 0,   ///< unlit base colour per cell
+    FLAT = 1,   ///< one lit colour per cell (centroid)
+    GOURAUD = 2 ///< one lit colour per vertex, interpolated
+  };
+  ///@{
+  /// Shading mode. Default GOURAUD.
+  vtkSetClampMacro(ShadingMode, int, NONE, GOURAUD);
+  vtkGetMacro(ShadingMode, int);
+  void SetShadingModeToNone() { this->SetShadingMode(NONE); }
+  void SetShadingModeToFlat() { this->SetShadingMode(FLAT); }
+  void SetShadingModeToGouraud() { this->SetShadingMode(GOURAUD); }
+  ///@}
+
+  ///@{
+  /// Shadows between the mesh's own triangles (the paper's illumination occlusion). Default on.
+  vtkSetMacro(Shadows, bool);
+  vtkGetMacro(Shadows, bool);
+  vtkBooleanMacro(Shadows, bool);
+  ///@}
+
+  ///@{
+  /// Light both sides of each surface (the normal is turned towards the viewer). Default on.
+  vtkSetMacro(TwoSidedLighting, bool);
+  vtkGetMacro(TwoSidedLighting, bool);
+  vtkBooleanMacro(TwoSidedLighting, bool);
+  ///@}
+
+  ///@{
+  /// Global ambient light (RGB). Default 0.2 0.2 0.2.
+  vtkSetVector3Macro(GlobalAmbient, double);
+  vtkGetVector3Macro(GlobalAmbient, double);
+  ///@}
+
+  ///@{
+  /// Material emission (RGB). Default black.
+  vtkSetVector3Macro(Emission, double);
+  vtkGetVector3Macro(Emission, double);
+  ///@}
+
+  ///@{
+  /// Name of the base colour array of the input. Default "Colors".
+  vtkSetStringMacro(InputColorArrayName);
+  vtkGetStringMacro(InputColorArrayName);
+  ///@}
+
+  /// The modification time includes the lights' and the property's.
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkCatadioptricLighting();
+  ~vtkCatadioptricLighting() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkSmartPointer<vtkLightCollection> Lights;
+  vtkSmartPointer<vtkProperty> Property;
+  int ShadingMode = GOURAUD;
+  bool Shadows = true;
+  bool TwoSidedLighting = true;
+  double GlobalAmbient[3] = { 0.2, 0.2, 0.2 };
+  double Emission[3] = { 0.0, 0.0, 0.0 };
+  char* InputColorArrayName = nullptr;
+
+private:
+  vtkCatadioptricLighting(const vtkCatadioptricLighting&) = delete;
+  void operator=(const vtkCatadioptricLighting&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif
