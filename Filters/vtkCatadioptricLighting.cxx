@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 vtkStandardNewMacro(vtkCatadioptricLighting);
@@ -111,41 +112,46 @@ unsigned char ToByte(double v)
 struct vtkCatadioptricLighting::Internals
 {
   catar::RayScene Scene;
-  vtkPoints* Points = nullptr;
-  vtkMTimeType PointsTime = 0;
-  vtkMTimeType PolysTime = 0;
+  // What the scene was built from: points object, its MTime and the polygons' MTime per mesh.
+  std::vector<std::tuple<vtkPoints*, vtkMTimeType, vtkMTimeType>> Sources;
   bool Built = false;
 
-  // Builds (or keeps) the ray scene of the mesh's triangles.
-  bool Update(vtkPolyData* mesh, std::string& error)
+  // Builds (or keeps) the ray scene of the meshes' polygons (fan-triangulated).
+  bool Update(const std::vector<vtkPolyData*>& meshes, std::string& error)
   {
-    vtkPoints* pts = mesh->GetPoints();
-    if (this->Built && pts == this->Points && pts->GetMTime() == this->PointsTime &&
-      mesh->GetPolys()->GetMTime() == this->PolysTime)
+    std::vector<std::tuple<vtkPoints*, vtkMTimeType, vtkMTimeType>> sources;
+    for (vtkPolyData* mesh : meshes)
+    {
+      vtkPoints* pts = mesh->GetPoints();
+      sources.emplace_back(pts, pts ? pts->GetMTime() : 0, mesh->GetPolys()->GetMTime());
+    }
+    if (this->Built && sources == this->Sources)
     {
       return true;
     }
-    std::vector<float> xyz(3 * static_cast<size_t>(mesh->GetNumberOfPoints()));
-    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      mesh->GetPoint(i, p);
-      for (int k = 0; k < 3; ++k)
-      {
-        xyz[3 * i + k] = static_cast<float>(p[k]);
-      }
-    }
+    std::vector<float> xyz;
     std::vector<std::uint32_t> tris;
     vtkNew<vtkIdList> ids;
-    vtkCellArray* polys = mesh->GetPolys();
-    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+    for (vtkPolyData* mesh : meshes)
     {
-      polys->GetCellAtId(c, ids);
-      for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
+      const std::uint32_t offset = static_cast<std::uint32_t>(xyz.size() / 3);
+      for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
       {
-        tris.push_back(static_cast<std::uint32_t>(ids->GetId(0)));
-        tris.push_back(static_cast<std::uint32_t>(ids->GetId(k)));
-        tris.push_back(static_cast<std::uint32_t>(ids->GetId(k + 1)));
+        double p[3];
+        mesh->GetPoint(i, p);
+        xyz.insert(xyz.end(),
+          { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) });
+      }
+      vtkCellArray* polys = mesh->GetPolys();
+      for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+      {
+        polys->GetCellAtId(c, ids);
+        for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
+        {
+          tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(0)));
+          tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k)));
+          tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k + 1)));
+        }
       }
     }
     this->Built = this->Scene.Build(xyz, tris);
@@ -154,9 +160,7 @@ struct vtkCatadioptricLighting::Internals
       error = this->Scene.GetError();
       return false;
     }
-    this->Points = pts;
-    this->PointsTime = pts->GetMTime();
-    this->PolysTime = polys->GetMTime();
+    this->Sources = sources;
     return true;
   }
 };
@@ -166,8 +170,20 @@ vtkCatadioptricLighting::vtkCatadioptricLighting()
   , Property(vtkSmartPointer<vtkProperty>::New())
   , Internal(new Internals)
 {
+  this->SetNumberOfInputPorts(2);
   this->SetInputColorArrayName("Colors");
   this->Property->SetSpecular(0.0);
+}
+
+int vtkCatadioptricLighting::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  }
+  return 1;
 }
 
 vtkCatadioptricLighting::~vtkCatadioptricLighting()
@@ -199,6 +215,51 @@ void vtkCatadioptricLighting::SetLights(vtkLightCollection* lights)
 {
   this->Lights = lights ? lights : vtkSmartPointer<vtkLightCollection>::New().GetPointer();
   this->Modified();
+}
+
+void vtkCatadioptricLighting::AddSpotLight(double px, double py, double pz, double fx,
+  double fy, double fz, double coneAngle, double r, double g, double b)
+{
+  vtkNew<vtkLight> light;
+  light->SetPositional(true);
+  light->SetPosition(px, py, pz);
+  light->SetFocalPoint(fx, fy, fz);
+  light->SetConeAngle(coneAngle);
+  light->SetExponent(1.0);
+  light->SetAmbientColor(0, 0, 0);
+  light->SetDiffuseColor(r, g, b);
+  light->SetSpecularColor(r, g, b);
+  this->AddLight(light);
+}
+
+void vtkCatadioptricLighting::SetDiffuseColor(double r, double g, double b)
+{
+  this->Property->SetDiffuseColor(r, g, b);
+}
+
+void vtkCatadioptricLighting::SetAmbient(double ambient)
+{
+  this->Property->SetAmbient(ambient);
+}
+
+void vtkCatadioptricLighting::SetDiffuse(double diffuse)
+{
+  this->Property->SetDiffuse(diffuse);
+}
+
+void vtkCatadioptricLighting::SetSpecular(double specular)
+{
+  this->Property->SetSpecular(specular);
+}
+
+void vtkCatadioptricLighting::SetSpecularPower(double power)
+{
+  this->Property->SetSpecularPower(power);
+}
+
+void vtkCatadioptricLighting::SetOpacity(double opacity)
+{
+  this->Property->SetOpacity(opacity);
 }
 
 void vtkCatadioptricLighting::SetProperty(vtkProperty* property)
@@ -277,8 +338,16 @@ int vtkCatadioptricLighting::RequestData(
   const bool shadows = this->Shadows && mode != NONE && !lights.empty();
   if (shadows)
   {
+    std::vector<vtkPolyData*> meshes{ input };
+    for (int i = 0; i < inputVector[1]->GetNumberOfInformationObjects(); ++i)
+    {
+      if (vtkPolyData* occluder = vtkPolyData::GetData(inputVector[1], i))
+      {
+        meshes.push_back(occluder);
+      }
+    }
     std::string error;
-    if (!this->Internal->Update(input, error))
+    if (!this->Internal->Update(meshes, error))
     {
       vtkErrorMacro("Cannot build the shadow ray scene: " << error);
       return 0;
@@ -329,6 +398,38 @@ int vtkCatadioptricLighting::RequestData(
     {
       normals = VertexNormals(input);
     }
+    // Cell base colours become point colours: the mean over the cells around each point.
+    std::vector<float> pointBase;
+    if (base.HasArray() && !base.IsPerPoint())
+    {
+      pointBase.assign(4 * static_cast<size_t>(nPts), 0.0f);
+      std::vector<int> count(nPts, 0);
+      vtkCellArray* polys = input->GetPolys();
+      const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
+      vtkNew<vtkIdList> ids;
+      for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+      {
+        polys->GetCellAtId(c, ids);
+        float v[4];
+        base.Get(0, first + c, v);
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+        {
+          const vtkIdType id = ids->GetId(k);
+          for (int j = 0; j < 4; ++j)
+          {
+            pointBase[4 * id + j] += v[j];
+          }
+          ++count[id];
+        }
+      }
+      for (vtkIdType i = 0; i < nPts; ++i)
+      {
+        for (int j = 0; j < 4; ++j)
+        {
+          pointBase[4 * i + j] /= std::max(1, count[i]);
+        }
+      }
+    }
     colors->SetNumberOfTuples(nPts);
     unsigned char* out = colors->GetPointer(0);
     vtkSMPTools::For(0, nPts, [&](vtkIdType b, vtkIdType e) {
@@ -355,7 +456,14 @@ int vtkCatadioptricLighting::RequestData(
           n = normals[i];
         }
         float rgba[4];
-        base.Get(i, 0, rgba);
+        if (pointBase.empty())
+        {
+          base.Get(i, 0, rgba);
+        }
+        else
+        {
+          std::copy(&pointBase[4 * i], &pointBase[4 * i] + 4, rgba);
+        }
         const catar::Vec3 c = shade(V3(p), n, model.CameraToWorld(V3(mp)), rgba, lit);
         o[0] = ToByte(c.x());
         o[1] = ToByte(c.y());

@@ -22,8 +22,9 @@
  * point/cell (so a box with a colour per face is lit face by face).
  *
  * Shadows: with Shadows on, a light contributes its diffuse and specular terms only where the
- * segment from the surface point to the light is free (Embree ray queries against the input's own
- * triangles; the acceleration structure is kept while the input geometry does not change).
+ * segment from the surface point to the light is free: Embree ray queries against the input's own
+ * polygons and those of the meshes on input port 1 (optional, repeatable: the other objects of the
+ * scene, in world coordinates). The acceleration structure is kept while no mesh changes.
  *
  * Points and cells that are not visible are left black. Work is split with vtkSMPTools.
  */
@@ -48,6 +49,13 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
+  /// Other meshes that cast shadows (input port 1, world coordinates).
+  void AddOccluderConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
+  void AddOccluderData(vtkDataObject* mesh) { this->AddInputData(1, mesh); }
+  void RemoveAllOccluderConnections() { this->RemoveAllInputConnections(1); }
+  ///@}
+
+  ///@{
   /// The lights (world coordinates).
   void AddLight(vtkLight* light);
   void RemoveAllLights();
@@ -55,10 +63,25 @@ public:
   void SetLights(vtkLightCollection* lights);
   ///@}
 
+  /// Convenience for scripts and ParaView: adds a spotlight at `position` aimed at `focalPoint`,
+  /// cone half angle in degrees, diffuse and specular colour (r, g, b), no ambient, exponent 1.
+  void AddSpotLight(double px, double py, double pz, double fx, double fy, double fz,
+    double coneAngle, double r, double g, double b);
+
   ///@{
   /// The material. A default vtkProperty (grey, no specular) is created.
   void SetProperty(vtkProperty* property);
   vtkProperty* GetProperty();
+  ///@}
+
+  ///@{
+  /// Shortcuts to the material (the vtkProperty), for scripts and ParaView.
+  void SetDiffuseColor(double r, double g, double b);
+  void SetAmbient(double ambient);
+  void SetDiffuse(double diffuse);
+  void SetSpecular(double specular);
+  void SetSpecularPower(double power);
+  void SetOpacity(double opacity);
   ///@}
 
   /// Shading modes.
@@ -115,6 +138,8 @@ public:
 protected:
   vtkCatadioptricLighting();
   ~vtkCatadioptricLighting() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

@@ -130,12 +130,122 @@ SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int
     {
       throw fs::ParseError("'pattern_size' must be positive");
     }
+    const cv::FileNode material = node["material"];
+    if (!material.empty() && !material.isNone())
+    {
+      if (!material.isMap())
+      {
+        throw fs::ParseError("'material' must be a map");
+      }
+      o.ambient = fs::Number(material, "ambient", o.ambient);
+      o.diffuse = fs::Number(material, "diffuse", o.diffuse);
+      o.specular = fs::Number(material, "specular", o.specular);
+      o.specularPower = fs::Number(material, "specular_power", o.specularPower);
+      o.specularColor = ColorOr(material, "specular_color", o.specularColor);
+      for (double v : { o.ambient, o.diffuse, o.specular })
+      {
+        if (!(v >= 0.0 && v <= 1.0))
+        {
+          throw fs::ParseError("material: ambient, diffuse and specular must be in [0, 1]");
+        }
+      }
+      if (!(o.specularPower >= 0.0 && o.specularPower <= 128.0))
+      {
+        throw fs::ParseError("material: 'specular_power' must be in [0, 128]");
+      }
+    }
     return o;
   }
   catch (const fs::ParseError& e)
   {
     throw fs::ParseError(where.str() + ": " + e.what());
   }
+}
+
+SceneLight ReadLight(const cv::FileNode& node, int index)
+{
+  std::ostringstream where;
+  where << "lighting.lights[" << index << "]";
+  if (!node.isMap())
+  {
+    throw fs::ParseError(where.str() + " must be a map");
+  }
+  try
+  {
+    SceneLight l;
+    l.type = fs::String(node, "type", l.type);
+    if (l.type != "spot" && l.type != "point" && l.type != "directional")
+    {
+      throw fs::ParseError("'type' must be spot, point or directional");
+    }
+    l.position = Vec3Or(node, "position", l.position);
+    l.focalPoint = Vec3Or(node, "focal_point", l.focalPoint);
+    if (l.type != "point" && (l.position - l.focalPoint).norm() == 0.0)
+    {
+      throw fs::ParseError("'position' and 'focal_point' must differ");
+    }
+    l.coneAngle = fs::Number(node, "cone_angle", l.coneAngle);
+    if (!(l.coneAngle > 0.0 && l.coneAngle <= 90.0))
+    {
+      throw fs::ParseError("'cone_angle' must be in (0, 90] degrees");
+    }
+    l.exponent = fs::Number(node, "exponent", l.exponent);
+    if (!(l.exponent >= 0.0 && l.exponent <= 128.0))
+    {
+      throw fs::ParseError("'exponent' must be in [0, 128]");
+    }
+    l.color = ColorOr(node, "color", l.color);
+    l.ambient = ColorOr(node, "ambient", l.ambient);
+    l.intensity = fs::Number(node, "intensity", l.intensity);
+    if (!(l.intensity >= 0.0))
+    {
+      throw fs::ParseError("'intensity' must not be negative");
+    }
+    l.attenuation = Vec3Or(node, "attenuation", l.attenuation);
+    if ((l.attenuation.array() < 0.0).any() || l.attenuation.sum() == 0.0)
+    {
+      throw fs::ParseError("'attenuation' must be three non-negative numbers, not all zero");
+    }
+    return l;
+  }
+  catch (const fs::ParseError& e)
+  {
+    throw fs::ParseError(where.str() + ": " + e.what());
+  }
+}
+
+SceneLighting ReadLighting(const cv::FileNode& node)
+{
+  SceneLighting lighting;
+  if (node.empty() || node.isNone())
+  {
+    return lighting;
+  }
+  if (!node.isMap())
+  {
+    throw fs::ParseError("'lighting' must be a map");
+  }
+  lighting.shading = fs::String(node, "shading", "gouraud");
+  if (lighting.shading != "none" && lighting.shading != "flat" && lighting.shading != "gouraud")
+  {
+    throw fs::ParseError("lighting: 'shading' must be none, flat or gouraud");
+  }
+  lighting.shadows = fs::Number(node, "shadows", 1) != 0;
+  lighting.globalAmbient = ColorOr(node, "global_ambient", lighting.globalAmbient);
+  const cv::FileNode lights = node["lights"];
+  if (!lights.empty() && !lights.isNone())
+  {
+    if (!lights.isSeq())
+    {
+      throw fs::ParseError("lighting: 'lights' must be a sequence");
+    }
+    int i = 0;
+    for (cv::FileNodeIterator it = lights.begin(); it != lights.end(); ++it, ++i)
+    {
+      lighting.lights.push_back(ReadLight(*it, i));
+    }
+  }
+  return lighting;
 }
 
 void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescription& out)
@@ -213,6 +323,7 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
     }
     scene.background.samples = static_cast<int>(s);
   }
+  scene.lighting = ReadLighting(root["lighting"]);
   const cv::FileNode objects = root["objects"];
   if (!objects.empty() && !objects.isNone())
   {
@@ -310,6 +421,17 @@ camera:
 output: { width: 1328, height: 1048 }
 solver: quartic
 background: { type: environment, samples: 2 }
+lighting:
+  shading: gouraud
+  shadows: 1
+  global_ambient: [ 0.3, 0.3, 0.3 ]
+  lights:
+    # a warm spotlight above the mirror, aimed between the objects
+    - { type: spot, position: [ 0.25, 0.05, 1.35 ], focal_point: [ 0.0, -0.22, 0.95 ],
+        cone_angle: 45, exponent: 1, color: [ 1.0, 0.95, 0.85 ] }
+    # a dim cool fill light from the front left
+    - { type: directional, position: [ -0.6, 1.0, 0.8 ], focal_point: [ 0.0, 0.0, 0.0 ],
+        color: [ 0.3, 0.35, 0.45 ] }
 objects:
   - name: parallelepiped
     type: box
@@ -318,6 +440,7 @@ objects:
     translate: [ 0.14, -0.22, 0.87 ]
     rotate: [ 0.0, 0.0, 30.0 ]
     face_colors: 1
+    material: { ambient: 0.3, diffuse: 0.8, specular: 0.2, specular_power: 20 }
   - name: torus
     type: torus
     radius: 0.075
@@ -326,8 +449,7 @@ objects:
     translate: [ -0.15, -0.22, 1.1 ]
     rotate: [ 70.0, 0.0, 20.0 ]
     color: [ 0.95, 0.55, 0.1 ]
-    pattern: checker
-    pattern_size: 0.025
+    material: { ambient: 0.3, diffuse: 0.8, specular: 0.6, specular_power: 40 }
 )";
 }
 

@@ -37,6 +37,36 @@ struct SceneObject
   /// other cell, so that an unlit object shows its shape and the mirror's bending.
   std::string pattern = "none";
   double patternSize = 0.02;
+  // Material (used when the scene is lit): coefficients times the object's colour, and the
+  // specular colour and power.
+  double ambient = 0.2;
+  double diffuse = 0.8;
+  double specular = 0.3;
+  double specularPower = 20.0;
+  Vec3 specularColor = Vec3(1, 1, 1);
+};
+
+/// A light of the scene (world coordinates; colours in [0,1], multiplied by intensity).
+struct SceneLight
+{
+  std::string type = "spot"; ///< "spot", "point" or "directional"
+  Vec3 position = Vec3(0, 0, 2);
+  Vec3 focalPoint = Vec3(0, 0, 0); ///< spot axis / direction of a directional light
+  double coneAngle = 30.0;         ///< spot cone half angle, degrees
+  double exponent = 1.0;
+  Vec3 color = Vec3(1, 1, 1); ///< diffuse and specular colour
+  Vec3 ambient = Vec3(0, 0, 0);
+  double intensity = 1.0;
+  Vec3 attenuation = Vec3(1, 0, 0);
+};
+
+/// How objects are lit. Without a `lighting` section scenes are unlit (shading "none").
+struct SceneLighting
+{
+  std::string shading = "none"; ///< "none", "flat" or "gouraud"
+  bool shadows = true;
+  Vec3 globalAmbient = Vec3(0.2, 0.2, 0.2);
+  std::vector<SceneLight> lights;
 };
 
 /// Background of the output image.
@@ -56,6 +86,7 @@ struct SceneDescription
   int height = 0;
   SolverType solver = SolverType::Quartic;
   SceneBackground background;
+  SceneLighting lighting;
   std::vector<SceneObject> objects;
 };
 

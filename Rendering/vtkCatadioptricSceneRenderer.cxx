@@ -5,6 +5,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
+#include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCellData.h"
@@ -13,6 +14,9 @@
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkImageReader2Factory.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkProperty.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkObjectFactory.h"
@@ -48,9 +52,11 @@ vtkStandardNewMacro(vtkCatadioptricSceneRenderer);
 
 namespace
 {
-const char* const kStageNames[] = { "scene", "meshes", "background", "projection", "sort",
-  "composite" };
-constexpr int kNumberOfStages = 6;
+const char* const kStageNames[] = { "scene", "meshes", "background", "projection", "lighting",
+  "sort", "composite" };
+constexpr int kNumberOfStages = 7;
+// The stages that run for every frame (projection .. composite).
+constexpr int kFirstPerFrameStage = 3;
 
 using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b)
@@ -283,11 +289,13 @@ struct vtkCatadioptricSceneRenderer::Internals
   bool Loaded = false;
   std::string LoadedName;
   std::string Error;
-  double Times[kNumberOfStages] = { 0, 0, 0, 0, 0, 0 };
+  double Times[kNumberOfStages] = { 0, 0, 0, 0, 0, 0, 0 };
   vtkIdType Triangles = 0;
   vtkNew<vtkCatadioptricCamera> Camera;
   vtkSmartPointer<vtkAlgorithm> Background; // environment source or image reader; may be null
+  vtkNew<vtkLightCollection> Lights;
   std::vector<vtkSmartPointer<vtkCatadioptricProjection>> Projections;
+  std::vector<vtkSmartPointer<vtkCatadioptricLighting>> Lightings;
   std::vector<vtkSmartPointer<vtkCatadioptricPainterSort>> Sorts;
   vtkNew<vtkCatadioptricCompositor> Compositor;
 };
@@ -335,29 +343,38 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   auto t1 = Clock::now();
   in.Times[0] = Seconds(t0, t1);
 
+  // Lights, shared by every object.
+  in.Lights->RemoveAllItems();
+  for (const catar::SceneLight& l : scene.lighting.lights)
+  {
+    vtkNew<vtkLight> light;
+    light->SetPositional(l.type != "directional");
+    light->SetPosition(l.position.data());
+    light->SetFocalPoint(l.focalPoint.data());
+    light->SetConeAngle(l.type == "spot" ? l.coneAngle : 90.0);
+    light->SetExponent(l.exponent);
+    light->SetIntensity(l.intensity);
+    light->SetAmbientColor(l.ambient.data());
+    light->SetDiffuseColor(l.color.data());
+    light->SetSpecularColor(l.color.data());
+    light->SetAttenuationValues(l.attenuation.data());
+    in.Lights->AddItem(light);
+  }
+  const bool lit = scene.lighting.shading != "none";
+
   // Meshes: prepared once.
   in.Projections.clear();
+  in.Lightings.clear();
   in.Sorts.clear();
   in.Compositor->RemoveAllInputConnections(1);
   in.Triangles = 0;
+  std::vector<vtkSmartPointer<vtkPolyData>> meshes;
   try
   {
     for (const catar::SceneObject& o : scene.objects)
     {
-      vtkSmartPointer<vtkPolyData> mesh = BuildObject(o);
-      in.Triangles += mesh->GetNumberOfPolys();
-      auto proj = vtkSmartPointer<vtkCatadioptricProjection>::New();
-      proj->SetInputData(mesh);
-      proj->SetCamera(in.Camera);
-      proj->SetSolver(scene.solver == catar::SolverType::Iterative
-          ? vtkCatadioptricProjection::ITERATIVE
-          : vtkCatadioptricProjection::QUARTIC);
-      auto sort = vtkSmartPointer<vtkCatadioptricPainterSort>::New();
-      sort->SetInputConnection(proj->GetOutputPort());
-      sort->DropInvisibleCellsOn();
-      in.Compositor->AddMeshConnection(sort->GetOutputPort());
-      in.Projections.push_back(proj);
-      in.Sorts.push_back(sort);
+      meshes.push_back(BuildObject(o));
+      in.Triangles += meshes.back()->GetNumberOfPolys();
     }
   }
   catch (const std::exception& e)
@@ -365,6 +382,49 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     in.Error = (name.empty() ? std::string("demo scene") : name) + ": " + e.what();
     vtkErrorMacro(<< in.Error);
     return false;
+  }
+  for (size_t i = 0; i < meshes.size(); ++i)
+  {
+    const catar::SceneObject& o = scene.objects[i];
+    auto proj = vtkSmartPointer<vtkCatadioptricProjection>::New();
+    proj->SetInputData(meshes[i]);
+    proj->SetCamera(in.Camera);
+    proj->SetSolver(scene.solver == catar::SolverType::Iterative
+        ? vtkCatadioptricProjection::ITERATIVE
+        : vtkCatadioptricProjection::QUARTIC);
+    vtkAlgorithmOutput* last = proj->GetOutputPort();
+    if (lit)
+    {
+      auto lighting = vtkSmartPointer<vtkCatadioptricLighting>::New();
+      lighting->SetInputConnection(last);
+      lighting->SetLights(in.Lights);
+      lighting->SetShadingMode(scene.lighting.shading == "flat"
+          ? vtkCatadioptricLighting::FLAT
+          : vtkCatadioptricLighting::GOURAUD);
+      lighting->SetShadows(scene.lighting.shadows);
+      lighting->SetGlobalAmbient(scene.lighting.globalAmbient.data());
+      lighting->SetAmbient(o.ambient);
+      lighting->SetDiffuse(o.diffuse);
+      lighting->SetSpecular(o.specular);
+      lighting->SetSpecularPower(o.specularPower);
+      lighting->GetProperty()->SetSpecularColor(o.specularColor.data());
+      // The other objects cast shadows too.
+      for (size_t j = 0; j < meshes.size(); ++j)
+      {
+        if (j != i)
+        {
+          lighting->AddOccluderData(meshes[j]);
+        }
+      }
+      in.Lightings.push_back(lighting);
+      last = lighting->GetOutputPort();
+    }
+    auto sort = vtkSmartPointer<vtkCatadioptricPainterSort>::New();
+    sort->SetInputConnection(last);
+    sort->DropInvisibleCellsOn();
+    in.Compositor->AddMeshConnection(sort->GetOutputPort());
+    in.Projections.push_back(proj);
+    in.Sorts.push_back(sort);
   }
   auto t2 = Clock::now();
   in.Times[1] = Seconds(t1, t2);
@@ -458,6 +518,14 @@ bool vtkCatadioptricSceneRenderer::Render()
     }
   }
   auto t2 = Clock::now();
+  for (auto& l : in.Lightings)
+  {
+    if (!l->GetExecutive()->Update())
+    {
+      return fail("lighting");
+    }
+  }
+  auto t3 = Clock::now();
   for (auto& s : in.Sorts)
   {
     if (!s->GetExecutive()->Update())
@@ -465,16 +533,17 @@ bool vtkCatadioptricSceneRenderer::Render()
       return fail("sort");
     }
   }
-  auto t3 = Clock::now();
+  auto t4 = Clock::now();
   if (!in.Compositor->GetExecutive()->Update())
   {
     return fail("composite");
   }
-  auto t4 = Clock::now();
+  auto t5 = Clock::now();
   in.Times[2] = Seconds(t0, t1);
   in.Times[3] = Seconds(t1, t2);
   in.Times[4] = Seconds(t2, t3);
   in.Times[5] = Seconds(t3, t4);
+  in.Times[6] = Seconds(t4, t5);
   in.Error.clear();
   return true;
 }
@@ -514,6 +583,26 @@ vtkCatadioptricCamera* vtkCatadioptricSceneRenderer::GetCamera()
 int vtkCatadioptricSceneRenderer::GetNumberOfStages()
 {
   return kNumberOfStages;
+}
+
+int vtkCatadioptricSceneRenderer::GetFirstPerFrameStage()
+{
+  return kFirstPerFrameStage;
+}
+
+double vtkCatadioptricSceneRenderer::GetFrameTime()
+{
+  double t = 0.0;
+  for (int s = kFirstPerFrameStage; s < kNumberOfStages; ++s)
+  {
+    t += this->Internal->Times[s];
+  }
+  return t;
+}
+
+vtkLightCollection* vtkCatadioptricSceneRenderer::GetLights()
+{
+  return this->Internal->Lights;
 }
 
 const char* vtkCatadioptricSceneRenderer::GetStageName(int stage)

@@ -4,8 +4,9 @@
  *
  * Reads a scene (YAML/JSON, see README "Scene files"), builds the objects (mesh files through
  * VTK's readers, or procedural boxes, spheres, tori, cylinders, planes), and runs, for every
- * frame, projection -> painter sort -> compositing onto the background (a synthesised room, a
- * colour, or an image file). Meshes are prepared once; Render() can be called again after the
+ * frame, projection -> lighting (when the scene is lit; every object casts shadows on the others)
+ * -> painter sort -> compositing onto the background (a synthesised room, a colour, or an image
+ * file). Meshes are prepared once; Render() can be called again after the
  * camera pose changes, and then redoes only the per-frame stages.
  *
  * The wall-clock time of each stage of the last Render() is kept (GetStageName / GetStageTime).
@@ -20,6 +21,7 @@
 
 class vtkCatadioptricCamera;
 class vtkImageData;
+class vtkLightCollection;
 
 class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricSceneRenderer : public vtkObject
 {
@@ -52,11 +54,17 @@ public:
 
   ///@{
   /// Timing of the last LoadScene()/Render(): stages "scene", "meshes", "background",
-  /// "projection", "sort", "composite"; seconds.
+  /// "projection", "lighting", "sort", "composite"; seconds. The stages from
+  /// GetFirstPerFrameStage() on run for every frame; GetFrameTime() is their sum.
   int GetNumberOfStages();
   const char* GetStageName(int stage);
   double GetStageTime(int stage);
+  int GetFirstPerFrameStage();
+  double GetFrameTime();
   ///@}
+
+  /// The scene's lights (shared by every object); move them and call Render() again.
+  vtkLightCollection* GetLights();
 
   /// Number of triangles in the scene's meshes.
   vtkIdType GetNumberOfTriangles();

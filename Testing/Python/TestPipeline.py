@@ -115,7 +115,7 @@ class PipelineTest(unittest.TestCase):
             self.assertEqual(renderer.GetOutput().GetDimensions(), (332, 262, 1))
             self.assertGreater(renderer.GetNumberOfTriangles(), 1000)
             names = [renderer.GetStageName(i) for i in range(renderer.GetNumberOfStages())]
-            self.assertEqual(names, ["scene", "meshes", "background", "projection", "sort", "composite"])
+            self.assertEqual(names, ["scene", "meshes", "background", "projection", "lighting", "sort", "composite"])
             png = os.path.join(d, "out.png")
             self.assertTrue(renderer.WritePNG(png))
             self.assertGreater(os.path.getsize(png), 1000)
