@@ -55,8 +55,8 @@ std::vector<catar::LightSource> ConvertLights(vtkLightCollection* lights)
     }
     else
     {
-      s.kind = l->GetConeAngle() < 90.0 ? catar::LightSource::Kind::Spot
-                                        : catar::LightSource::Kind::Point;
+      s.kind =
+        l->GetConeAngle() < 90.0 ? catar::LightSource::Kind::Spot : catar::LightSource::Kind::Point;
     }
     s.position = V3(l->GetPosition());
     s.focalPoint = V3(l->GetFocalPoint());
@@ -115,6 +115,22 @@ struct vtkCatadioptricLighting::Internals
   // What the scene was built from: points object, its MTime and the polygons' MTime per mesh.
   std::vector<std::tuple<vtkPoints*, vtkMTimeType, vtkMTimeType>> Sources;
   bool Built = false;
+  // Vertex normals of the input, and what they were computed from.
+  std::vector<catar::Vec3> Normals;
+  std::tuple<vtkPoints*, vtkMTimeType, vtkMTimeType> NormalsSource{ nullptr, 0, 0 };
+
+  const std::vector<catar::Vec3>& GetNormals(vtkPolyData* mesh)
+  {
+    vtkPoints* pts = mesh->GetPoints();
+    const auto source = std::make_tuple(pts, pts->GetMTime(), mesh->GetPolys()->GetMTime());
+    if (source != this->NormalsSource ||
+      this->Normals.size() != static_cast<size_t>(mesh->GetNumberOfPoints()))
+    {
+      this->Normals = VertexNormals(mesh);
+      this->NormalsSource = source;
+    }
+    return this->Normals;
+  }
 
   // Builds (or keeps) the ray scene of the meshes' polygons (fan-triangulated).
   bool Update(const std::vector<vtkPolyData*>& meshes, std::string& error)
@@ -217,8 +233,8 @@ void vtkCatadioptricLighting::SetLights(vtkLightCollection* lights)
   this->Modified();
 }
 
-void vtkCatadioptricLighting::AddSpotLight(double px, double py, double pz, double fx,
-  double fy, double fz, double coneAngle, double r, double g, double b)
+void vtkCatadioptricLighting::AddSpotLight(double px, double py, double pz, double fx, double fy,
+  double fz, double coneAngle, double r, double g, double b)
 {
   vtkNew<vtkLight> light;
   light->SetPositional(true);
@@ -383,8 +399,8 @@ int vtkCatadioptricLighting::RequestData(
         lit[k] = scene.Occluded(start, target, 0.5 * offset) ? 0 : 1;
       }
     }
-    return catar::Shade(p, n, viewer, lights, m, globalAmbient, shadows ? lit.data() : nullptr,
-      false);
+    return catar::Shade(
+      p, n, viewer, lights, m, globalAmbient, shadows ? lit.data() : nullptr, false);
   };
 
   vtkNew<vtkUnsignedCharArray> colors;
@@ -392,12 +408,11 @@ int vtkCatadioptricLighting::RequestData(
   colors->SetNumberOfComponents(4);
   if (mode == GOURAUD)
   {
-    std::vector<catar::Vec3> normals;
     vtkDataArray* inNormals = input->GetPointData()->GetNormals();
-    if (!inNormals || inNormals->GetNumberOfComponents() != 3)
-    {
-      normals = VertexNormals(input);
-    }
+    static const std::vector<catar::Vec3> none;
+    const std::vector<catar::Vec3>& normals = (inNormals && inNormals->GetNumberOfComponents() == 3)
+      ? none
+      : this->Internal->GetNormals(input);
     // Cell base colours become point colours: the mean over the cells around each point.
     std::vector<float> pointBase;
     if (base.HasArray() && !base.IsPerPoint())

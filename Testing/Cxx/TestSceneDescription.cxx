@@ -102,3 +102,53 @@ TEST(SceneDescription, CalibrationFileRelativeToTheScene)
   std::remove(calib.c_str());
   std::remove(scenePath.c_str());
 }
+
+TEST(SceneDescription, LightingAndMaterials)
+{
+  const std::string text = std::string("%YAML:1.0\n---\n") + kCamera + R"(
+lighting:
+  shading: flat
+  shadows: 0
+  global_ambient: [0.1, 0.1, 0.1]
+  lights:
+    - { type: spot, position: [0, 0, 2], focal_point: [0, 0, 0], cone_angle: 25, exponent: 3,
+        color: [1, 0, 0], intensity: 0.5 }
+    - { type: directional, position: [1, 1, 1] }
+objects:
+  - { type: box, material: { ambient: 0.1, diffuse: 0.7, specular: 0.9, specular_power: 64 } }
+)";
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(ParseScene(text, "", s, error)) << error;
+  EXPECT_EQ(s.lighting.shading, "flat");
+  EXPECT_FALSE(s.lighting.shadows);
+  ASSERT_EQ(s.lighting.lights.size(), 2u);
+  EXPECT_EQ(s.lighting.lights[0].type, "spot");
+  EXPECT_DOUBLE_EQ(s.lighting.lights[0].coneAngle, 25);
+  EXPECT_DOUBLE_EQ(s.lighting.lights[0].intensity, 0.5);
+  EXPECT_EQ(s.lighting.lights[1].type, "directional");
+  EXPECT_DOUBLE_EQ(s.objects[0].specularPower, 64);
+  EXPECT_DOUBLE_EQ(s.objects[0].diffuse, 0.7);
+  // Without a lighting section a scene is unlit.
+  SceneDescription plain;
+  ASSERT_TRUE(ParseScene(std::string("%YAML:1.0\n---\n") + kCamera, "", plain, error)) << error;
+  EXPECT_EQ(plain.lighting.shading, "none");
+
+  const std::vector<std::pair<std::string, std::string>> bad = {
+    { "lighting: { shading: phong }", "shading" },
+    { "lighting: { lights: [ { type: laser } ] }", "lights[0]" },
+    { "lighting: { lights: [ { cone_angle: 120 } ] }", "cone_angle" },
+    { "lighting: { lights: [ { position: [0, 0, 0], focal_point: [0, 0, 0] } ] }", "differ" },
+    { "lighting: { lights: [ { attenuation: [0, 0, 0] } ] }", "attenuation" },
+    { "objects: [ { type: box, material: { diffuse: 2 } } ]", "material" },
+    { "objects: [ { type: box, material: { specular_power: 500 } } ]", "specular_power" },
+  };
+  for (const auto& c : bad)
+  {
+    SceneDescription t;
+    EXPECT_FALSE(ParseScene(std::string("%YAML:1.0\n---\n") + kCamera + c.first + "\n", "", t, error))
+      << c.first;
+    EXPECT_NE(error.find(c.second), std::string::npos) << "'" << error << "' lacks '" << c.second
+                                                       << "'";
+  }
+}
