@@ -22,6 +22,12 @@
 //      out.rgb = src.rgb * a + dst.rgb * (1 - a),  out.a = a + dst.a * (1 - a),
 //    computed on the 0..255 scale, rounded to nearest and clamped. a == 1 overwrites rgb with
 //    round(255 * src.rgb) and alpha with 255.
+//  - Texture mapping (optional): texture coordinates (u, v) are interpolated linearly in screen
+//    space like the colours, the texture is sampled bilinearly at each drawn pixel (see
+//    sampleTexture) and src = vertex colour * texel, channel by channel, alpha included
+//    (modulate); src is then composited as above. Texture space follows VTK / OpenGL: (0, 0) is
+//    the bottom-left corner of the texture image, (1, 1) its top-right corner, texel rows are
+//    counted from the BOTTOM row.
 #ifndef catarRasterizer_h
 #define catarRasterizer_h
 
@@ -76,8 +82,36 @@ struct PixelRect
   int y1 = 0; ///< one past the last row inside
 };
 
+/// A texture image the rasteriser reads (not owned): width x height texels of `channels` bytes
+/// each -- grey (1: L), RGB (3) or RGBA (4). Texel (i, j): i = column from the left, j = row
+/// counted from the BOTTOM row (VTK / OpenGL order, as vtkImageData stores images), so data is the
+/// address of the bottom-left texel and a vtkImageData scalar buffer is used as is with rowStride
+/// = channels * width. rowStride is the byte offset from row j to row j+1 and MAY BE NEGATIVE: a
+/// top-down buffer (OpenCV) is addressed with data = start of its last row and rowStride =
+/// -channels * width.
+/// Texture coordinates: (u, v) = (0, 0) is the bottom-left corner of the image and (1, 1) its
+/// top-right corner; the centre of texel (i, j) is at ((i + 0.5) / width, (j + 0.5) / height).
+/// Outside [0, 1] the coordinates either repeat (wrap, period 1) or clamp to the edge texels.
+/// Valid iff data != nullptr, width > 0, height > 0 and channels is 1, 3 or 4 (rowStride is not
+/// checked).
+struct TextureView
+{
+  const std::uint8_t* data = nullptr; ///< address of texel (0, 0), the BOTTOM-left one
+  int width = 0;                      ///< number of columns
+  int height = 0;                     ///< number of rows
+  int channels = 4;                   ///< bytes per texel: 1 (grey), 3 (RGB) or 4 (RGBA)
+  std::ptrdiff_t rowStride = 0;       ///< bytes from row j to row j+1 (may be negative)
+  bool repeat = false;                ///< true: repeat (wrap); false: clamp to edge
+
+  /// Address of the first byte of texel (i, j) (j counted from the bottom); no bounds check.
+  const std::uint8_t* texel(int i, int j) const
+  {
+    return data + j * rowStride + channels * static_cast<std::ptrdiff_t>(i);
+  }
+};
+
 /// One vertex: position in pixels (pixel (0,0) is the CENTRE of the top-left pixel), colour RGBA
-/// in [0, 1] (clamped), and depth (smaller is nearer).
+/// in [0, 1] (clamped), depth (smaller is nearer) and texture coordinates.
 struct RasterVertex
 {
   double x = 0;    ///< column coordinate, pixels
@@ -87,6 +121,8 @@ struct RasterVertex
   float b = 0;     ///< blue, [0, 1]
   float a = 1;     ///< opacity, [0, 1]
   float depth = 0; ///< depth, used only with a depth buffer
+  float u = 0;     ///< texture coordinate, left to right; used only with a texture
+  float v = 0;     ///< texture coordinate, BOTTOM to top; used only with a texture
 };
 
 /// Outcome of rasterizeTriangle. Checks are made in this order: InvalidInput, OutsideGuardBand,
@@ -98,13 +134,22 @@ enum class RasterResult
   Empty,            ///< covers no pixel centre inside the clipped image area; nothing drawn
   Degenerate,       ///< zero area after snapping to the 1/256 grid; nothing drawn
   OutsideGuardBand, ///< a vertex lies outside +-kRasterGuardBand pixels; nothing drawn
-  InvalidInput      ///< NaN/Inf in a vertex (position, colour or depth), a target without
-                    ///< data or with a non-positive size, or a depth buffer without data or
-                    ///< smaller than the target; nothing drawn
+  InvalidInput      ///< NaN/Inf in a vertex (position, colour, depth or texture
+                    ///< coordinates, whether or not they are used), a target without data or
+                    ///< with a non-positive size, a depth buffer without data or smaller than
+                    ///< the target, or an invalid texture (see TextureView); nothing drawn
 };
 
 /// Name of a RasterResult value (for messages).
 const char* toString(RasterResult result);
+
+/// Samples texture bilinearly at (u, v) (see TextureView for the coordinates): the four texels
+/// whose centres surround the point are weighted by the usual bilinear weights, with the texel
+/// indices wrapped (repeat) or clamped to the image (clamp to edge) -- at a texel centre the
+/// result is that texel, half-way between two texel centres their average. rgba receives the
+/// result in [0, 1] (texel bytes / 255): grey gives r = g = b and a = 1, RGB gives a = 1.
+/// An invalid texture or a NaN/Inf coordinate gives rgba = (0, 0, 0, 0). Thread-safe.
+void sampleTexture(const TextureView& texture, float u, float v, float rgba[4]);
 
 /// Draws one triangle (either winding) with colours interpolated linearly in screen space
 /// (Gouraud, planes through the snapped vertex positions; equal vertex colours take a
@@ -116,14 +161,23 @@ const char* toString(RasterResult result);
 /// clip: only pixels inside clip intersected with the image are read or written. Drawing a
 /// triangle tile by tile with clip rectangles that partition the image gives exactly the same
 /// result as drawing it once over the whole image.
+/// texture: if non-null, the vertex texture coordinates (u, v) are interpolated linearly in screen
+/// space (planes through the snapped vertex positions, like the colours), the texture is sampled
+/// with sampleTexture's rule at each pixel that passes the coverage, clip and depth tests, and the
+/// source colour is the interpolated (clamped) vertex colour times the texel, all four channels
+/// (modulate: white opaque vertices show the texture as is); it is then composited source-over.
+/// Coverage, clipping, the depth test and the depth written are exactly those of the untextured
+/// drawing. Texturing takes its own scan loop: it costs nothing to untextured triangles. An
+/// invalid texture (see TextureView) gives InvalidInput.
 /// Thread-safe for disjoint clip rectangles; allocates nothing.
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip,
-  const DepthView* depth = nullptr);
+  const DepthView* depth = nullptr, const TextureView* texture = nullptr);
 
 /// Convenience overload: clip = the whole image.
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
-  const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth = nullptr);
+  const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth = nullptr,
+  const TextureView* texture = nullptr);
 }
 
 #endif

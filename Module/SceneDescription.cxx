@@ -92,7 +92,16 @@ SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int
         "unknown type '" + o.type + "' (mesh, box, sphere, torus, cylinder, plane)");
     }
     o.name = fs::String(node, "name", o.type);
-    o.size = Vec3Or(node, "size", o.size);
+    const cv::FileNode size = node["size"];
+    if (!size.empty() && !size.isNone() && fs::Numbers(size, "size").size() == 2)
+    {
+      const std::vector<double> xy = fs::Numbers(size, "size"); // a plane's x and y
+      o.size = Vec3(xy[0], xy[1], o.size.z());
+    }
+    else
+    {
+      o.size = Vec3Or(node, "size", o.size);
+    }
     o.radius = fs::Number(node, "radius", o.radius);
     o.tubeRadius = fs::Number(node, "tube_radius", o.tubeRadius);
     o.height = fs::Number(node, "height", o.height);
