@@ -14,13 +14,32 @@
 // bounding box. The edge functions are stepped incrementally along rows and columns; as the
 // covered centres of a row are contiguous (convexity), a row stops at the end of its span.
 //
-// Attributes (r, g, b, a, depth) are planes c(x, y) evaluated in double at each covered pixel from
-// the row start value (no accumulation across rows or pixels).
+// Attributes (r, g, b, a, depth, and u, v with a texture) are planes c(x, y) evaluated in double
+// at each covered pixel from the row start value (no accumulation across rows or pixels).
+//
+// Texturing has its own scan loop (ScanTextured, instantiated per channel count and depth test)
+// and its own out-of-line copy of the set-up (RasterizeTextured = Rasterize<true>), so the
+// untextured code (Rasterize<false> with Scan) has no texture test in its loops. The small helpers
+// used by both are declared inline: without the hint GCC stops inlining them into the untextured
+// loops once the textured code makes the file larger (measured: ~10% slower Gouraud).
+// The bilinear sampler works on the 0..255 scale with a + f (b - a) interpolations, which stay
+// within [min(a, b), max(a, b)] in float and return a exactly for f == 0 (texel centres exact).
 #include "Rasterizer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+
+#if defined(__GNUC__) || defined(__clang__)
+#define CATAR_NOINLINE __attribute__((noinline))
+#define CATAR_ALWAYS_INLINE inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define CATAR_NOINLINE __declspec(noinline)
+#define CATAR_ALWAYS_INLINE __forceinline
+#else
+#define CATAR_NOINLINE
+#define CATAR_ALWAYS_INLINE inline
+#endif
 
 namespace catar
 {
@@ -28,10 +47,19 @@ namespace
 {
 constexpr std::int64_t kOne = std::int64_t(1) << kRasterSubPixelBits;
 
+// c - c is 0 for a finite c and NaN otherwise, so the sum is 0 iff every field is finite (one
+// test instead of nine; all terms are exact zeros or NaN, so no overflow).
 bool IsFinite(const RasterVertex& v)
 {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.r) && std::isfinite(v.g) &&
-    std::isfinite(v.b) && std::isfinite(v.a) && std::isfinite(v.depth);
+  const float f = (v.r - v.r) + (v.g - v.g) + (v.b - v.b) + (v.a - v.a) + (v.depth - v.depth) +
+    (v.u - v.u) + (v.v - v.v);
+  return (v.x - v.x) + (v.y - v.y) + static_cast<double>(f) == 0.0;
+}
+
+bool IsValid(const TextureView& t)
+{
+  return t.data && t.width > 0 && t.height > 0 &&
+    (t.channels == 1 || t.channels == 3 || t.channels == 4);
 }
 
 bool InGuardBand(const RasterVertex& v)
@@ -63,18 +91,18 @@ std::int64_t CeilToPixel(std::int64_t a)
   return -FloorToPixel(-a);
 }
 
-float Clamp01(float v)
+inline float Clamp01(float v)
 {
   return std::min(1.0f, std::max(0.0f, v));
 }
 
-float Clamp01(double v)
+inline float Clamp01(double v)
 {
   return static_cast<float>(std::min(1.0, std::max(0.0, v)));
 }
 
 // v in [0, 255] up to rounding noise (never negative): round to nearest, clamp to 255.
-std::uint8_t ToByte(float v)
+inline std::uint8_t ToByte(float v)
 {
   return static_cast<std::uint8_t>(std::min(static_cast<int>(v + 0.5f), 255));
 }
@@ -86,7 +114,7 @@ struct BlendSource
   float keep = 1;                   // 1 - alpha
 };
 
-BlendSource MakeSource(float r, float g, float b, float a)
+inline BlendSource MakeSource(float r, float g, float b, float a)
 {
   const float sa = 255.0f * a;
   return BlendSource{ r * sa, g * sa, b * sa, sa, 1.0f - a };
@@ -108,6 +136,25 @@ struct Plane
   double dy = 0;     // per row down
 };
 
+// The triangle's geometry for attribute planes: vertex 1 and 2 relative to vertex 0 (x10, y10,
+// x20, y20, pixels), 1 / doubled area, and (xMin, yMin) relative to vertex 0 (ox, oy).
+struct PlaneBasis
+{
+  double x10, y10, x20, y20, invArea, ox, oy;
+
+  // The plane through the values c0, c1, c2 at the three vertices.
+  CATAR_ALWAYS_INLINE Plane make(double c0, double c1, double c2) const
+  {
+    const double d1 = c1 - c0;
+    const double d2 = c2 - c0;
+    Plane p;
+    p.dx = (d1 * y20 - d2 * y10) * invArea;
+    p.dy = (d2 * x10 - d1 * x20) * invArea;
+    p.origin = c0 + p.dx * ox + p.dy * oy;
+    return p;
+  }
+};
+
 struct Setup
 {
   int xMin, xMax, yMin, yMax;     // inclusive pixel range to scan (already clipped)
@@ -120,6 +167,77 @@ struct Setup
   std::uint8_t flatBytes[4] = {}; // opaque flat colour
   bool opaque = false;            // alpha == 1 at every vertex (so at every pixel)
 };
+
+// A valid texture in the form the sampler uses.
+struct Texture
+{
+  const std::uint8_t* data; // texel (0, 0), bottom-left
+  std::ptrdiff_t stride;    // bytes from row j to row j+1
+  int width, height;
+  double fw, fh; // width, height
+  bool repeat;
+};
+
+Texture MakeTexture(const TextureView& t)
+{
+  return Texture{ t.data, t.rowStride, t.width, t.height, static_cast<double>(t.width),
+    static_cast<double>(t.height), t.repeat };
+}
+
+// One axis of the bilinear footprint: texture coordinate c -> the two texel indices i0, i1 whose
+// centres surround it and the weight f of i1. Texel i's centre is at (i + 0.5) / n, i.e. at
+// s = c n - 0.5 = i. Any finite c (NaN gives the first texel with clamping; callers never pass it).
+CATAR_ALWAYS_INLINE void Footprint(
+  double c, int n, double fn, bool repeat, int& i0, int& i1, float& f)
+{
+  if (repeat)
+  {
+    const double s = (c - std::floor(c)) * fn - 0.5; // in [-0.5, n - 0.5]
+    const int i = static_cast<int>(s + 1.0) - 1;     // floor(s), in [-1, n - 1]
+    f = static_cast<float>(s - static_cast<double>(i));
+    i0 = i < 0 ? n - 1 : i;
+    i1 = i + 1 < n ? i + 1 : 0;
+  }
+  else
+  {
+    double s = c * fn - 0.5;
+    s = s > 0.0 ? s : 0.0; // clamp to edge (and NaN -> 0)
+    s = s < fn - 1.0 ? s : fn - 1.0;
+    const int i = static_cast<int>(s); // s >= 0: truncation is floor
+    f = static_cast<float>(s - static_cast<double>(i));
+    i0 = i;
+    i1 = i + 1 < n ? i + 1 : i;
+  }
+}
+
+// Bilinear sample at (u, v) on the 0..255 scale (RGBA; grey -> r = g = b, no alpha -> 255).
+template<int kChannels>
+CATAR_ALWAYS_INLINE void Bilinear(const Texture& t, double u, double v, float out[4])
+{
+  int i0, i1, j0, j1;
+  float fx, fy;
+  Footprint(u, t.width, t.fw, t.repeat, i0, i1, fx);
+  Footprint(v, t.height, t.fh, t.repeat, j0, j1, fy);
+  const std::uint8_t* lo0 = t.data + j0 * t.stride + kChannels * static_cast<std::ptrdiff_t>(i0);
+  const std::uint8_t* lo1 = t.data + j0 * t.stride + kChannels * static_cast<std::ptrdiff_t>(i1);
+  const std::uint8_t* hi0 = t.data + j1 * t.stride + kChannels * static_cast<std::ptrdiff_t>(i0);
+  const std::uint8_t* hi1 = t.data + j1 * t.stride + kChannels * static_cast<std::ptrdiff_t>(i1);
+  for (int c = 0; c < kChannels; ++c)
+  {
+    const float a = lo0[c], b = lo1[c], d = hi0[c], e = hi1[c];
+    const float lo = a + fx * (b - a);
+    const float hi = d + fx * (e - d);
+    out[c] = lo + fy * (hi - lo);
+  }
+  if (kChannels == 1)
+  {
+    out[1] = out[2] = out[0];
+  }
+  if (kChannels != 4)
+  {
+    out[3] = 255.0f;
+  }
+}
 
 // Scans the bounding box; returns true when at least one pixel centre is covered. Everything
 // the inner loop needs is copied to locals first: stores through the uint8_t pixel pointer may
@@ -207,6 +325,152 @@ bool Scan(const ImageView& img, const DepthView* depthView, const Setup& s)
   }
   return any;
 }
+
+// Texture coordinate planes (with the texture) for ScanTextured, and the vertex colour when the
+// three are equal.
+struct TexSetup
+{
+  Texture texture;
+  Plane u, v;
+  bool flat = false;
+  float flatColour[4] = {};
+};
+
+// ScanTextured relies on an opaque texel (sa = 255) giving alpha exactly 1.
+static_assert(255.0f * (1.0f / 255.0f) == 1.0f, "255 * (1 / 255) must round to 1 in float");
+
+// Scan for textured triangles: the edge walk and depth test of Scan, then src = Gouraud colour *
+// bilinear texel (s.colour always set). Separate from Scan to keep texturing out of its loops.
+template<bool kDepth, int kChannels>
+bool ScanTextured(
+  const ImageView& img, const DepthView* depthView, const Setup& s, const TexSetup& ts)
+{
+  const int xMin = s.xMin;
+  const int xMax = s.xMax;
+  const std::int64_t sx0 = s.stepX[0], sx1 = s.stepX[1], sx2 = s.stepX[2];
+  const std::int64_t sy0 = s.stepY[0], sy1 = s.stepY[1], sy2 = s.stepY[2];
+  // Opaque vertices and a texture without alpha: overwrite, no need to read the target.
+  const bool opaque = s.opaque && kChannels != 4;
+  // Equal vertex colours (white, typically): no colour planes to evaluate per pixel.
+  const bool flat = ts.flat;
+  const float flatColour[4] = { ts.flatColour[0], ts.flatColour[1], ts.flatColour[2],
+    ts.flatColour[3] };
+  const Plane cr = s.colour[0], cg = s.colour[1], cb = s.colour[2], ca = s.colour[3];
+  const Plane cz = s.depth;
+  const Plane cu = ts.u, cv = ts.v;
+  const Texture tex = ts.texture;
+
+  bool any = false;
+  std::int64_t r0 = s.w[0], r1 = s.w[1], r2 = s.w[2];
+  for (int y = s.yMin; y <= s.yMax; ++y, r0 += sy0, r1 += sy1, r2 += sy2)
+  {
+    std::int64_t w0 = r0, w1 = r1, w2 = r2;
+    std::uint8_t* p = img.pixel(xMin, y);
+    float* zp = kDepth ? depthView->at(xMin, y) : nullptr;
+    const double rowIndex = static_cast<double>(y - s.yMin);
+    const double rRow = cr.origin + cr.dy * rowIndex;
+    const double gRow = cg.origin + cg.dy * rowIndex;
+    const double bRow = cb.origin + cb.dy * rowIndex;
+    const double aRow = ca.origin + ca.dy * rowIndex;
+    const double uRow = cu.origin + cu.dy * rowIndex;
+    const double vRow = cv.origin + cv.dy * rowIndex;
+    const double zRow = kDepth ? cz.origin + cz.dy * rowIndex : 0.0;
+    bool inSpan = false;
+    for (int x = xMin; x <= xMax; ++x, w0 += sx0, w1 += sx1, w2 += sx2, p += 4)
+    {
+      if ((w0 | w1 | w2) < 0)
+      {
+        if (inSpan)
+        {
+          break; // convex: the span of this row is over
+        }
+        continue;
+      }
+      inSpan = true;
+      const double k = static_cast<double>(x - xMin);
+      if (kDepth)
+      {
+        const float z = static_cast<float>(zRow + cz.dx * k);
+        float* zq = zp + (x - xMin);
+        if (!(z < *zq))
+        {
+          continue;
+        }
+        *zq = z;
+      }
+      float t[4];
+      Bilinear<kChannels>(tex, uRow + cu.dx * k, vRow + cv.dx * k, t);
+      const float r = flat ? flatColour[0] : Clamp01(rRow + cr.dx * k);
+      const float g = flat ? flatColour[1] : Clamp01(gRow + cg.dx * k);
+      const float b = flat ? flatColour[2] : Clamp01(bRow + cb.dx * k);
+      if (opaque) // texel alpha 255, vertex alpha 1: out = round(c * texel), alpha 255
+      {
+        p[0] = ToByte(r * t[0]);
+        p[1] = ToByte(g * t[1]);
+        p[2] = ToByte(b * t[2]);
+        p[3] = 255;
+      }
+      else
+      {
+        const float a = flat ? flatColour[3] : Clamp01(aRow + ca.dx * k);
+        const float sa = a * t[3];                // 255 * alpha
+        const float alpha = sa * (1.0f / 255.0f); // exactly 1 when sa == 255 (static_assert)
+        Blend(
+          p, BlendSource{ r * t[0] * alpha, g * t[1] * alpha, b * t[2] * alpha, sa, 1.0f - alpha });
+      }
+    }
+    any = any || inSpan;
+  }
+  return any;
+}
+
+template<bool kDepth>
+bool ScanTextured(const ImageView& img, const DepthView* depthView, const Setup& s,
+  const TexSetup& ts, int channels)
+{
+  switch (channels)
+  {
+    case 1:
+      return ScanTextured<kDepth, 1>(img, depthView, s, ts);
+    case 3:
+      return ScanTextured<kDepth, 3>(img, depthView, s, ts);
+    default:
+      return ScanTextured<kDepth, 4>(img, depthView, s, ts);
+  }
+}
+
+// The textured end of Rasterize<true>: colour, depth and (u, v) planes, then the scan. s and basis
+// come from the common set-up; a, b, c are the vertices in the normalised winding.
+RasterResult DrawTextured(const ImageView& target, const DepthView* depth,
+  const TextureView& texture, Setup s, const PlaneBasis basis, const RasterVertex* a,
+  const RasterVertex* b, const RasterVertex* c)
+{
+  const RasterVertex* v[3] = { a, b, c };
+  TexSetup ts;
+  ts.flat = true;
+  for (int k = 0; k < 4; ++k)
+  {
+    float col[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      const RasterVertex& p = *v[i];
+      col[i] = Clamp01(k == 0 ? p.r : k == 1 ? p.g : k == 2 ? p.b : p.a);
+    }
+    s.colour[k] = basis.make(col[0], col[1], col[2]);
+    ts.flat = ts.flat && col[0] == col[1] && col[0] == col[2];
+    ts.flatColour[k] = col[0];
+  }
+  if (depth)
+  {
+    s.depth = basis.make(v[0]->depth, v[1]->depth, v[2]->depth);
+  }
+  ts.texture = MakeTexture(texture);
+  ts.u = basis.make(v[0]->u, v[1]->u, v[2]->u);
+  ts.v = basis.make(v[0]->v, v[1]->v, v[2]->v);
+  const bool any = depth ? ScanTextured<true>(target, depth, s, ts, texture.channels)
+                         : ScanTextured<false>(target, depth, s, ts, texture.channels);
+  return any ? RasterResult::Drawn : RasterResult::Empty;
+}
 }
 
 const char* toString(RasterResult result)
@@ -227,8 +491,39 @@ const char* toString(RasterResult result)
   return "Unknown";
 }
 
-RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
-  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth)
+void sampleTexture(const TextureView& texture, float u, float v, float rgba[4])
+{
+  if (!IsValid(texture) || !std::isfinite(u) || !std::isfinite(v))
+  {
+    rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.0f;
+    return;
+  }
+  const Texture t = MakeTexture(texture);
+  switch (texture.channels)
+  {
+    case 1:
+      Bilinear<1>(t, u, v, rgba);
+      break;
+    case 3:
+      Bilinear<3>(t, u, v, rgba);
+      break;
+    default:
+      Bilinear<4>(t, u, v, rgba);
+      break;
+  }
+  for (int c = 0; c < 4; ++c)
+  {
+    rgba[c] /= 255.0f;
+  }
+}
+
+namespace
+{
+// rasterizeTriangle without (kTextured = false) or with a texture (non-null).
+template<bool kTextured>
+CATAR_ALWAYS_INLINE RasterResult Rasterize(const ImageView& target, const RasterVertex& v0,
+  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
+  const TextureView* texture)
 {
   if (!target.data || target.width <= 0 || target.height <= 0 || !IsFinite(v0) || !IsFinite(v1) ||
     !IsFinite(v2))
@@ -236,6 +531,10 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     return RasterResult::InvalidInput;
   }
   if (depth && (!depth->data || depth->width < target.width || depth->height < target.height))
+  {
+    return RasterResult::InvalidInput;
+  }
+  if (kTextured && !IsValid(*texture))
   {
     return RasterResult::InvalidInput;
   }
@@ -304,18 +603,9 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const double y10 = static_cast<double>(Y[1] - Y[0]) * inv;
   const double x20 = static_cast<double>(X[2] - X[0]) * inv;
   const double y20 = static_cast<double>(Y[2] - Y[0]) * inv;
-  const double invArea = 1.0 / (x10 * y20 - y10 * x20);
-  const double ox = static_cast<double>(s.xMin) - static_cast<double>(X[0]) * inv;
-  const double oy = static_cast<double>(s.yMin) - static_cast<double>(Y[0]) * inv;
-  auto makePlane = [&](double c0, double c1, double c2) {
-    const double d1 = c1 - c0;
-    const double d2 = c2 - c0;
-    Plane p;
-    p.dx = (d1 * y20 - d2 * y10) * invArea;
-    p.dy = (d2 * x10 - d1 * x20) * invArea;
-    p.origin = c0 + p.dx * ox + p.dy * oy;
-    return p;
-  };
+  const PlaneBasis basis{ x10, y10, x20, y20, 1.0 / (x10 * y20 - y10 * x20),
+    static_cast<double>(s.xMin) - static_cast<double>(X[0]) * inv,
+    static_cast<double>(s.yMin) - static_cast<double>(Y[0]) * inv };
 
   float col[3][4];
   for (int i = 0; i < 3; ++i)
@@ -331,6 +621,10 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     flat = flat && col[0][c] == col[1][c] && col[0][c] == col[2][c];
   }
   s.opaque = col[0][3] == 1.0f && col[1][3] == 1.0f && col[2][3] == 1.0f;
+  if constexpr (kTextured)
+  {
+    return DrawTextured(target, depth, *texture, s, basis, v[0], v[1], v[2]);
+  }
   if (flat)
   {
     s.flat = MakeSource(col[0][0], col[0][1], col[0][2], col[0][3]);
@@ -343,12 +637,12 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   {
     for (int c = 0; c < 4; ++c)
     {
-      s.colour[c] = makePlane(col[0][c], col[1][c], col[2][c]);
+      s.colour[c] = basis.make(col[0][c], col[1][c], col[2][c]);
     }
   }
   if (depth)
   {
-    s.depth = makePlane(v[0]->depth, v[1]->depth, v[2]->depth);
+    s.depth = basis.make(v[0]->depth, v[1]->depth, v[2]->depth);
   }
 
   bool any;
@@ -363,10 +657,31 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   return any ? RasterResult::Drawn : RasterResult::Empty;
 }
 
+// The textured variant, out of line: the public function inlines only the untextured one.
+CATAR_NOINLINE RasterResult RasterizeTextured(const ImageView& target, const RasterVertex& v0,
+  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
+  const TextureView* texture)
+{
+  return Rasterize<true>(target, v0, v1, v2, clip, depth, texture);
+}
+}
+
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
-  const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth)
+  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
+  const TextureView* texture)
+{
+  if (texture)
+  {
+    return RasterizeTextured(target, v0, v1, v2, clip, depth, texture);
+  }
+  return Rasterize<false>(target, v0, v1, v2, clip, depth, nullptr);
+}
+
+RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
+  const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth,
+  const TextureView* texture)
 {
   return rasterizeTriangle(
-    target, v0, v1, v2, PixelRect{ 0, 0, target.width, target.height }, depth);
+    target, v0, v1, v2, PixelRect{ 0, 0, target.width, target.height }, depth, texture);
 }
 }

@@ -1,4 +1,5 @@
-// CatadioptricAR Core: a dependency-free CPU triangle rasteriser (RGBA8 target, optional depth).
+// CatadioptricAR Core: a dependency-free CPU triangle rasteriser (RGBA8 target, optional depth,
+// optional bilinear texture).
 //
 // Conventions
 //  - Pixel (x, y): x to the right, y DOWN (row 0 is the top row, as OpenCV). The centre of pixel
@@ -148,6 +149,7 @@ const char* toString(RasterResult result);
 /// indices wrapped (repeat) or clamped to the image (clamp to edge) -- at a texel centre the
 /// result is that texel, half-way between two texel centres their average. rgba receives the
 /// result in [0, 1] (texel bytes / 255): grey gives r = g = b and a = 1, RGB gives a = 1.
+/// Computed in float from double texel coordinates: exact at texel centres that are exact floats.
 /// An invalid texture or a NaN/Inf coordinate gives rgba = (0, 0, 0, 0). Thread-safe.
 void sampleTexture(const TextureView& texture, float u, float v, float rgba[4]);
 
@@ -167,8 +169,8 @@ void sampleTexture(const TextureView& texture, float u, float v, float rgba[4]);
 /// source colour is the interpolated (clamped) vertex colour times the texel, all four channels
 /// (modulate: white opaque vertices show the texture as is); it is then composited source-over.
 /// Coverage, clipping, the depth test and the depth written are exactly those of the untextured
-/// drawing. Texturing takes its own scan loop: it costs nothing to untextured triangles. An
-/// invalid texture (see TextureView) gives InvalidInput.
+/// drawing. Textured triangles have their own scan loops: untextured ones test nothing about
+/// textures per pixel. An invalid texture (see TextureView) gives InvalidInput.
 /// Thread-safe for disjoint clip rectangles; allocates nothing.
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip,

@@ -139,6 +139,11 @@ SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int
     {
       throw fs::ParseError("'pattern_size' must be positive");
     }
+    o.texture = fs::String(node, "texture", "");
+    if (!o.texture.empty() && o.texture != "checker")
+    {
+      o.texture = Resolve(baseDir, o.texture);
+    }
     const cv::FileNode material = node["material"];
     if (!material.empty() && !material.isNone())
     {
@@ -449,6 +454,7 @@ objects:
     translate: [ 0.14, -0.22, 0.87 ]
     rotate: [ 0.0, 0.0, 30.0 ]
     face_colors: 1
+    texture: checker
     material: { ambient: 0.3, diffuse: 0.8, specular: 0.2, specular_power: 20 }
   - name: torus
     type: torus

@@ -37,6 +37,10 @@ struct SceneObject
   /// other cell, so that an unlit object shows its shape and the mirror's bending.
   std::string pattern = "none";
   double patternSize = 0.02;
+  /// Texture: "" (none), "checker" (a generated checkerboard) or an image file (resolved against
+  /// the scene file's folder). Boxes get texture coordinates per face (the paper's section 3.3);
+  /// meshes use their own.
+  std::string texture;
   // Material (used when the scene is lit): coefficients times the object's colour, and the
   // specular colour and power.
   double ambient = 0.2;

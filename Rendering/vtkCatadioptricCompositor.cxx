@@ -30,12 +30,28 @@ struct Triangle
   double Depth;
   double YMin;
   double YMax;
+  int Texture; // index into the textures, -1 for none
 };
+
+// The texture coordinates of a mesh: its active TCoords, else an array "TCoords" or
+// "TextureCoordinates" with 2 components.
+vtkDataArray* TextureCoordinates(vtkPolyData* mesh)
+{
+  vtkDataArray* t = mesh->GetPointData()->GetTCoords();
+  for (const char* name : { "TCoords", "TextureCoordinates" })
+  {
+    if (!t)
+    {
+      t = mesh->GetPointData()->GetArray(name);
+    }
+  }
+  return (t && t->GetNumberOfComponents() >= 2) ? t : nullptr;
+}
 } // namespace
 
 vtkCatadioptricCompositor::vtkCatadioptricCompositor()
 {
-  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfInputPorts(3);
   this->SetColorArrayName("Colors");
 }
 
@@ -50,6 +66,11 @@ int vtkCatadioptricCompositor::FillInputPortInformation(int port, vtkInformation
   if (port == 0)
   {
     info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  }
+  else if (port == 2)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
   }
   else
   {
@@ -86,13 +107,19 @@ int vtkCatadioptricCompositor::RequestInformation(
 int vtkCatadioptricCompositor::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  // The whole frame is always needed.
-  vtkInformation* frameInfo = inputVector[0]->GetInformationObject(0);
-  if (frameInfo && frameInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  // The whole frame and whole textures are always needed, whatever the output's extent.
+  for (int port : { 0, 2 })
   {
-    int extent[6];
-    frameInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-    frameInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+    for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
+    {
+      vtkInformation* info = inputVector[port]->GetInformationObject(i);
+      if (info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+      {
+        int extent[6];
+        info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+        info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+      }
+    }
   }
   return 1;
 }
@@ -234,6 +261,36 @@ int vtkCatadioptricCompositor::RequestData(
   }
   this->UpdateProgress(0.2);
 
+  // Textures (port 2): unsigned char images, 1, 3 or 4 components, row 0 at the bottom.
+  std::vector<catar::TextureView> textures;
+  for (int t = 0; t < inputVector[2]->GetNumberOfInformationObjects(); ++t)
+  {
+    vtkImageData* tex = vtkImageData::GetData(inputVector[2], t);
+    vtkDataArray* texels = tex ? tex->GetPointData()->GetScalars() : nullptr;
+    int tdims[3] = { 0, 0, 0 };
+    if (tex)
+    {
+      tex->GetDimensions(tdims);
+    }
+    if (!texels || texels->GetDataType() != VTK_UNSIGNED_CHAR || tdims[2] != 1 ||
+      tdims[0] < 1 || tdims[1] < 1 ||
+      !(texels->GetNumberOfComponents() == 1 || texels->GetNumberOfComponents() == 3 ||
+        texels->GetNumberOfComponents() == 4))
+    {
+      vtkErrorMacro("Texture " << t << " must be a 2D unsigned char image with 1, 3 or 4 "
+                                      "components.");
+      return 0;
+    }
+    catar::TextureView view;
+    view.data = static_cast<const std::uint8_t*>(texels->GetVoidPointer(0));
+    view.width = tdims[0];
+    view.height = tdims[1];
+    view.channels = texels->GetNumberOfComponents();
+    view.rowStride = static_cast<std::ptrdiff_t>(view.channels) * tdims[0];
+    view.repeat = this->RepeatTextures;
+    textures.push_back(view);
+  }
+
   // Triangles in painter order.
   std::vector<Triangle> triangles;
   for (int m = 0; m < nMeshes; ++m)
@@ -262,6 +319,30 @@ int vtkCatadioptricCompositor::RequestData(
       return 0;
     }
     const float opacity = static_cast<float>(this->Opacity);
+    // Texture: the one the mesh names in field data (TextureIndex), else the first, when the mesh
+    // has texture coordinates.
+    // A negative TextureIndex leaves the mesh untextured.
+    vtkDataArray* tcoords = textures.empty() ? nullptr : TextureCoordinates(mesh);
+    int texture = -1;
+    if (tcoords)
+    {
+      texture = 0;
+      if (vtkDataArray* index = mesh->GetFieldData()->GetArray("TextureIndex"))
+      {
+        texture = static_cast<int>(index->GetComponent(0, 0));
+      }
+      if (texture < 0)
+      {
+        tcoords = nullptr;
+        texture = -1;
+      }
+      else if (texture >= static_cast<int>(textures.size()))
+      {
+        vtkErrorMacro("Mesh " << m << " asks for texture " << texture << " but "
+                              << textures.size() << " are connected.");
+        return 0;
+      }
+    }
     const vtkIdType first = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
     vtkCellArray* polys = mesh->GetPolys();
     vtkNew<vtkIdList> ids;
@@ -288,6 +369,11 @@ int vtkCatadioptricCompositor::RequestData(
         v.g = rgba[1];
         v.b = rgba[2];
         v.a = rgba[3] * opacity;
+        if (tcoords)
+        {
+          v.u = static_cast<float>(tcoords->GetComponent(pid, 0));
+          v.v = static_cast<float>(tcoords->GetComponent(pid, 1));
+        }
       };
       // Fan triangulation of polygons.
       for (vtkIdType k = 1; k + 1 < n; ++k)
@@ -299,6 +385,7 @@ int vtkCatadioptricCompositor::RequestData(
         t.Depth = depth->GetComponent(cellId, 0);
         t.YMin = std::min({ t.V[0].y, t.V[1].y, t.V[2].y });
         t.YMax = std::max({ t.V[0].y, t.V[1].y, t.V[2].y });
+        t.Texture = texture;
         triangles.push_back(t);
       }
     }
@@ -331,7 +418,8 @@ int vtkCatadioptricCompositor::RequestData(
         {
           continue;
         }
-        catar::rasterizeTriangle(view, t.V[0], t.V[1], t.V[2], band);
+        catar::rasterizeTriangle(view, t.V[0], t.V[1], t.V[2], band, nullptr,
+          t.Texture >= 0 ? &textures[t.Texture] : nullptr);
       }
     }
   });
@@ -352,4 +440,5 @@ void vtkCatadioptricCompositor::PrintSelf(ostream& os, vtkIndent indent)
      << this->BackgroundColor[1] << ", " << this->BackgroundColor[2] << ", "
      << this->BackgroundColor[3] << "\n";
   os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
+  os << indent << "RepeatTextures: " << (this->RepeatTextures ? "On" : "Off") << "\n";
 }

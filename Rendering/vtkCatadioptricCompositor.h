@@ -19,6 +19,11 @@
  * as 0-255, floating point arrays as 0-1; 3 or 4 components. Otherwise the solid Color. Alpha is
  * multiplied by Opacity and composited "over" the frame.
  *
+ * Textures: images on input port 2 (one or more). A mesh with texture coordinates (its active
+ * TCoords, or an array TCoords / TextureCoordinates) is textured with the image its field data
+ * array TextureIndex names, or the first one (a negative TextureIndex: no texture): the colour above is multiplied by the bilinearly
+ * sampled texel (u, v in [0,1], (0,0) at the image's bottom-left, VTK's convention).
+ *
  * Without a frame the output is BackgroundColor, of ImageSize if set, else of the camera's image
  * size (from the meshes' field data).
  */
@@ -42,6 +47,17 @@ public:
   void AddMeshConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
   void AddMeshData(vtkDataObject* mesh) { this->AddInputData(1, mesh); }
   void RemoveAllMeshConnections() { this->RemoveAllInputConnections(1); }
+  /// Textures (port 2, several allowed): unsigned char images with 1, 3 or 4 components.
+  void AddTextureConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(2, output); }
+  void AddTextureData(vtkDataObject* texture) { this->AddInputData(2, texture); }
+  void RemoveAllTextureConnections() { this->RemoveAllInputConnections(2); }
+  ///@}
+
+  ///@{
+  /// Texture addressing beyond [0, 1]: repeat (on) or clamp to the edge (off, default).
+  vtkSetMacro(RepeatTextures, bool);
+  vtkGetMacro(RepeatTextures, bool);
+  vtkBooleanMacro(RepeatTextures, bool);
   ///@}
 
   ///@{
@@ -95,6 +111,7 @@ protected:
   char* ColorArrayName = nullptr;
   double BackgroundColor[4] = { 0.0, 0.0, 0.0, 1.0 };
   int ImageSize[2] = { 0, 0 };
+  bool RepeatTextures = false;
   int LastSize[2] = { 0, 0 };
   vtkIdType NumberOfDrawnTriangles = 0;
   vtkIdType NumberOfSkippedTriangles = 0;

@@ -2,6 +2,8 @@
 
 #include "SceneDescription.h"
 
+#include <Eigen/Geometry>
+
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
@@ -10,6 +12,9 @@
 #include "vtkCatadioptricProjection.h"
 #include "vtkCellData.h"
 #include "vtkCylinderSource.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIntArray.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
@@ -34,6 +39,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkTessellatedBoxSource.h"
+#include "vtkTextureMapToSphere.h"
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
 #include "vtkTriangleFilter.h"
@@ -148,7 +154,7 @@ vtkSmartPointer<vtkPolyData> Procedural(const catar::SceneObject& o)
     s->SetParametricFunction(torus);
     s->SetUResolution(std::max(3, res));
     s->SetVResolution(std::max(3, res / 2));
-    s->GenerateTextureCoordinatesOff();
+    s->SetGenerateTextureCoordinates(!o.texture.empty());
     source = s;
   }
   else if (o.type == "cylinder")
@@ -249,6 +255,89 @@ void Colorize(vtkPolyData* mesh, const catar::SceneObject& o)
   mesh->GetCellData()->AddArray(colors);
 }
 
+// Texture coordinates per face of an axis-aligned box centred at the origin (the paper's section
+// 3.3): each face maps its two in-plane coordinates to [0, 1]. The box's points are duplicated
+// per face, so every point belongs to one face.
+void BoxTextureCoordinates(vtkPolyData* box, const catar::Vec3& size)
+{
+  vtkNew<vtkFloatArray> tc;
+  tc->SetName("TCoords");
+  tc->SetNumberOfComponents(2);
+  tc->SetNumberOfTuples(box->GetNumberOfPoints());
+  tc->FillValue(0.0f);
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < box->GetNumberOfCells(); ++c)
+  {
+    box->GetCellPoints(c, ids);
+    if (ids->GetNumberOfIds() < 3)
+    {
+      continue;
+    }
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      box->GetPoint(ids->GetId(k), p[k]);
+    }
+    catar::Vec3 n = (catar::Vec3(p[1][0], p[1][1], p[1][2]) - catar::Vec3(p[0][0], p[0][1], p[0][2]))
+                      .cross(catar::Vec3(p[2][0], p[2][1], p[2][2]) -
+                        catar::Vec3(p[0][0], p[0][1], p[0][2]));
+    int axis = 0;
+    n.cwiseAbs().maxCoeff(&axis);
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      double q[3];
+      box->GetPoint(ids->GetId(k), q);
+      tc->SetTuple2(ids->GetId(k), q[a] / size[a] + 0.5, q[b] / size[b] + 0.5);
+    }
+  }
+  box->GetPointData()->SetTCoords(tc);
+}
+
+// A 256 x 256 RGB checkerboard of 8 x 8 squares, white and light grey, with thin dark lines.
+vtkSmartPointer<vtkImageData> CheckerTexture()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(256, 256, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  unsigned char* p = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int j = 0; j < 256; ++j)
+  {
+    for (int i = 0; i < 256; ++i)
+    {
+      const bool line = (i % 32) < 2 || (j % 32) < 2;
+      const bool odd = ((i / 32) + (j / 32)) & 1;
+      const unsigned char v = line ? 60 : (odd ? 170 : 255);
+      std::fill(p, p + 3, v);
+      p += 3;
+    }
+  }
+  return image;
+}
+
+vtkSmartPointer<vtkImageData> ReadTexture(const std::string& file)
+{
+  if (file == "checker")
+  {
+    return CheckerTexture();
+  }
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(file.c_str()));
+  if (!reader)
+  {
+    throw std::runtime_error("texture image cannot be read: " + file);
+  }
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  vtkDataArray* s = image ? image->GetPointData()->GetScalars() : nullptr;
+  if (!s || s->GetDataType() != VTK_UNSIGNED_CHAR)
+  {
+    throw std::runtime_error("texture must be an 8-bit image: " + file);
+  }
+  return image;
+}
+
 vtkSmartPointer<vtkPolyData> BuildObject(const catar::SceneObject& o)
 {
   vtkSmartPointer<vtkPolyData> local;
@@ -266,6 +355,21 @@ vtkSmartPointer<vtkPolyData> BuildObject(const catar::SceneObject& o)
     local = Procedural(o);
   }
   Colorize(local, o);
+  if (!o.texture.empty())
+  {
+    if (o.type == "box")
+    {
+      BoxTextureCoordinates(local, o.size);
+    }
+    else if (!local->GetPointData()->GetTCoords())
+    {
+      vtkNew<vtkTextureMapToSphere> map;
+      map->SetInputData(local);
+      map->PreventSeamOn();
+      map->Update();
+      local = vtkPolyData::SafeDownCast(map->GetOutput());
+    }
+  }
   vtkNew<vtkTransform> t;
   t->PostMultiply();
   t->Scale(o.scale.x(), o.scale.y(), o.scale.z());
@@ -382,6 +486,31 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     in.Error = (name.empty() ? std::string("demo scene") : name) + ": " + e.what();
     vtkErrorMacro(<< in.Error);
     return false;
+  }
+  in.Compositor->RemoveAllTextureConnections();
+  int textures = 0;
+  for (size_t i = 0; i < meshes.size(); ++i)
+  {
+    const catar::SceneObject& o = scene.objects[i];
+    vtkNew<vtkIntArray> index;
+    index->SetName("TextureIndex");
+    meshes[i]->GetFieldData()->AddArray(index);
+    if (o.texture.empty())
+    {
+      index->InsertNextValue(-1); // untextured, even when the mesh has texture coordinates
+      continue;
+    }
+    try
+    {
+      in.Compositor->AddTextureData(ReadTexture(o.texture));
+    }
+    catch (const std::exception& e)
+    {
+      in.Error = (name.empty() ? std::string("demo scene") : name) + ": " + e.what();
+      vtkErrorMacro(<< in.Error);
+      return false;
+    }
+    index->InsertNextValue(textures++);
   }
   for (size_t i = 0; i < meshes.size(); ++i)
   {

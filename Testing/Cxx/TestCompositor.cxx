@@ -7,7 +7,9 @@
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -255,4 +257,112 @@ TEST(vtkCatadioptricCompositor, ErrorsAreClear)
   comp3->Update();
   EXPECT_EQ(errors->Count, 3);
   EXPECT_EQ(At(comp3->GetOutput(), 7, 5), (std::array<int, 4>{ 255, 0, 0, 255 }));
+}
+
+namespace
+{
+// Two triangles covering the whole image, with texture coordinates that put the centre of
+// texel (i, j) on the centre of pixel (i, H - 1 - j): texture row 0 is the image's bottom row.
+vtkSmartPointer<vtkPolyData> TexturedQuad()
+{
+  auto mesh = PixelMesh({ { -0.5, -0.5, W - 0.5, -0.5, -0.5, H - 0.5 },
+                          { W - 0.5, -0.5, W - 0.5, H - 0.5, -0.5, H - 0.5 } },
+    { 1.0, 1.0 });
+  vtkDataArray* px = mesh->GetPointData()->GetArray("ImageCoordinates");
+  vtkNew<vtkFloatArray> tc;
+  tc->SetNumberOfComponents(2);
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    tc->InsertNextTuple2(
+      (px->GetComponent(i, 0) + 0.5) / W, 1.0 - (px->GetComponent(i, 1) + 0.5) / H);
+  }
+  mesh->GetPointData()->SetTCoords(tc);
+  return mesh;
+}
+
+// A W x H RGB texture whose texel (i, j) is (6 i, 8 j, 100).
+vtkSmartPointer<vtkImageData> GradientTexture(int components = 3)
+{
+  auto tex = vtkSmartPointer<vtkImageData>::New();
+  tex->SetDimensions(W, H, 1);
+  tex->AllocateScalars(VTK_UNSIGNED_CHAR, components);
+  for (int j = 0; j < H; ++j)
+  {
+    for (int i = 0; i < W; ++i)
+    {
+      unsigned char* p = static_cast<unsigned char*>(tex->GetScalarPointer(i, j, 0));
+      const unsigned char rgb[3] = { static_cast<unsigned char>(6 * i),
+        static_cast<unsigned char>(8 * j), 100 };
+      std::copy(rgb, rgb + components, p);
+    }
+  }
+  return tex;
+}
+} // namespace
+
+TEST(vtkCatadioptricCompositor, TextureModulatesTheColour)
+{
+  auto mesh = TexturedQuad();
+  CellColors(mesh, { { 128, 255, 64, 255 }, { 128, 255, 64, 255 } });
+  vtkNew<vtkCatadioptricCompositor> comp;
+  comp->AddMeshData(mesh);
+  comp->AddTextureData(GradientTexture());
+  comp->Update();
+  vtkImageData* img = comp->GetOutput();
+  for (int y = 0; y < H; ++y)
+  {
+    for (int x = 0; x < W; ++x)
+    {
+      // At texel centres bilinear sampling returns the texel; the colour multiplies it.
+      const int j = H - 1 - y;
+      const double expected[3] = { 6.0 * x * 128 / 255, 8.0 * j, 100.0 * 64 / 255 };
+      const auto c = At(img, x, y);
+      for (int k = 0; k < 3; ++k)
+      {
+        EXPECT_NEAR(c[k], expected[k], 1.0) << x << "," << y << " channel " << k;
+      }
+      EXPECT_EQ(c[3], 255);
+    }
+  }
+}
+
+TEST(vtkCatadioptricCompositor, TextureIndexChoosesAndNegativeDisables)
+{
+  vtkNew<catar_test::ErrorCounter> errors;
+  auto mesh = TexturedQuad();
+  CellColors(mesh, { { 255, 255, 255, 255 }, { 255, 255, 255, 255 } });
+  vtkNew<vtkIntArray> index;
+  index->SetName("TextureIndex");
+  index->InsertNextValue(1);
+  mesh->GetFieldData()->AddArray(index);
+  vtkNew<vtkCatadioptricCompositor> comp;
+  errors->Watch(comp);
+  comp->AddMeshData(mesh);
+  auto grey = GradientTexture(1); // texel (i, j) = 6 i, grey
+  comp->AddTextureData(GradientTexture());
+  comp->AddTextureData(grey);
+  comp->Update();
+  EXPECT_EQ(errors->Count, 0);
+  EXPECT_EQ(At(comp->GetOutput(), 10, 3), (std::array<int, 4>{ 60, 60, 60, 255 }));
+  // A negative index: the mesh is not textured although it has texture coordinates.
+  index->SetValue(0, -1);
+  mesh->Modified();
+  comp->Update();
+  EXPECT_EQ(At(comp->GetOutput(), 10, 3), (std::array<int, 4>{ 255, 255, 255, 255 }));
+  // An index beyond the connected textures is an error naming both numbers.
+  index->SetValue(0, 2);
+  mesh->Modified();
+  comp->Update();
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("texture 2 but 2 are connected"), std::string::npos)
+    << errors->Last;
+  // A texture that is not unsigned char is refused.
+  vtkNew<vtkImageData> floats;
+  floats->SetDimensions(4, 4, 1);
+  floats->AllocateScalars(VTK_FLOAT, 3);
+  comp->RemoveAllTextureConnections();
+  comp->AddTextureData(floats);
+  comp->Update();
+  EXPECT_EQ(errors->Count, 2);
+  EXPECT_NE(errors->Last.find("unsigned char"), std::string::npos) << errors->Last;
 }

@@ -23,11 +23,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace
 {
-const std::string kBaseline = std::string(CATAR_BASELINE_DIR) + "/DemoScene.png";
-
 // The demo scene at half resolution (keeps the baseline small and the test quick).
 std::string WriteHalfSizeDemo()
 {
@@ -59,36 +58,30 @@ const unsigned char* PixelOf(vtkImageData* img, double x, double y)
   return static_cast<unsigned char*>(img->GetScalarPointer(
     static_cast<int>(std::lround(x)), h - 1 - static_cast<int>(std::lround(y)), 0));
 }
-} // namespace
 
-TEST(DemoScene, MatchesTheBaseline)
+// Compares `image` with the baseline `name`.png (see the tolerance above); writes the baseline
+// instead when CATAR_UPDATE_BASELINES=1.
+void CompareWithBaseline(vtkImageData* image, const std::string& name)
 {
-  const std::string scene = WriteHalfSizeDemo();
-  ASSERT_FALSE(scene.empty()) << "the demo scene text no longer has the expected output line";
-  vtkNew<vtkCatadioptricSceneRenderer> renderer;
-  renderer->SetSceneFileName(scene.c_str());
-  ASSERT_TRUE(renderer->Render()) << renderer->GetLastError();
-  vtkImageData* image = renderer->GetOutput();
-  int dims[3];
-  image->GetDimensions(dims);
-  ASSERT_EQ(dims[0], 664);
-  ASSERT_EQ(dims[1], 524);
-
+  const std::string baseline = std::string(CATAR_BASELINE_DIR) + "/" + name + ".png";
   const char* update = std::getenv("CATAR_UPDATE_BASELINES");
   if (update && std::string(update) == "1")
   {
-    WritePNG(image, kBaseline);
-    GTEST_SKIP() << "baseline rewritten: " << kBaseline;
+    WritePNG(image, baseline);
+    GTEST_SKIP() << "baseline rewritten: " << baseline;
   }
-  const std::string rendered = std::string(CATAR_TEST_OUTPUT_DIR) + "/DemoScene.png";
-  if (!vtksys::SystemTools::FileExists(kBaseline, true))
+  vtksys::SystemTools::MakeDirectory(CATAR_TEST_OUTPUT_DIR);
+  const std::string rendered = std::string(CATAR_TEST_OUTPUT_DIR) + "/" + name + ".png";
+  if (!vtksys::SystemTools::FileExists(baseline, true))
   {
     WritePNG(image, rendered);
-    FAIL() << "no baseline " << kBaseline << "; the rendered image is " << rendered
+    FAIL() << "no baseline " << baseline << "; the rendered image is " << rendered
            << " (run with CATAR_UPDATE_BASELINES=1 to make it the baseline)";
   }
+  int dims[3];
+  image->GetDimensions(dims);
   vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(kBaseline.c_str());
+  reader->SetFileName(baseline.c_str());
   reader->Update();
   vtkImageData* base = reader->GetOutput();
   int bdims[3];
@@ -124,12 +117,120 @@ TEST(DemoScene, MatchesTheBaseline)
   if (badFraction > 0.001 || mean > 1.0)
   {
     WritePNG(image, rendered);
-    WritePNG(diff, std::string(CATAR_TEST_OUTPUT_DIR) + "/DemoScene-diff.png");
+    WritePNG(diff, std::string(CATAR_TEST_OUTPUT_DIR) + "/" + name + "-diff.png");
   }
-  EXPECT_LE(badFraction, 0.001) << bad << " pixels differ by more than 24 levels; see "
+  EXPECT_LE(badFraction, 0.001) << name << ": " << bad
+                                << " pixels differ by more than 24 levels; see "
                                 << CATAR_TEST_OUTPUT_DIR;
-  EXPECT_LE(mean, 1.0) << "mean absolute difference " << mean;
+  EXPECT_LE(mean, 1.0) << name << ": mean absolute difference " << mean;
 }
+} // namespace
+
+TEST(DemoScene, MatchesTheBaseline)
+{
+  const std::string scene = WriteHalfSizeDemo();
+  ASSERT_FALSE(scene.empty()) << "the demo scene text no longer has the expected output line";
+  vtkNew<vtkCatadioptricSceneRenderer> renderer;
+  renderer->SetSceneFileName(scene.c_str());
+  ASSERT_TRUE(renderer->Render()) << renderer->GetLastError();
+  int dims[3];
+  renderer->GetOutput()->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 664);
+  ASSERT_EQ(dims[1], 524);
+  CompareWithBaseline(renderer->GetOutput(), "DemoScene");
+}
+
+namespace
+{
+// Small lit scenes on a plain background, one per baseline (names are the baselines' names).
+const char* kBaselineCamera = R"(%YAML:1.0
+---
+camera:
+  image_width: 1328
+  image_height: 1048
+  camera_matrix: [ 1000.0, 0.0, 663.5, 0.0, 1000.0, 523.5, 0.0, 0.0, 1.0 ]
+  mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
+  world_to_camera: [ 1, 0, 0, 0,  0, 0, -1, 1.0,  0, 1, 0, 0.14,  0, 0, 0, 1 ]
+output: { width: 664, height: 524 }
+background: { type: color, color: [ 0.1, 0.1, 0.12 ] }
+)";
+
+const char* kTorus = R"(objects:
+  - { type: torus, radius: 0.08, tube_radius: 0.03, resolution: 48, translate: [ 0.0, -0.25, 0.9 ],
+      rotate: [ 60, 0, 0 ], color: [ 0.9, 0.9, 0.9 ],
+      material: { ambient: 0.2, diffuse: 0.8, specular: 0.5, specular_power: 30 } }
+)";
+
+const char* kOneSpot = R"(  lights:
+    - { type: spot, position: [ 0.2, 0.0, 1.3 ], focal_point: [ 0.0, -0.25, 0.9 ], cone_angle: 40,
+        color: [ 1, 1, 1 ] }
+)";
+
+const char* kBoxOnPlate = R"(objects:
+  - { type: box, size: [ 0.08, 0.08, 0.12 ], resolution: 8, translate: [ 0.0, -0.25, 0.86 ],
+      color: [ 0.9, 0.5, 0.2 ] }
+  - { type: plane, size: [ 0.4, 0.4 ], resolution: 80, translate: [ 0.0, -0.25, 0.8 ],
+      color: [ 0.8, 0.8, 0.8 ] }
+)";
+
+const char* kSlantSpot = R"(  lights:
+    - { type: spot, position: [ 0.25, 0.0, 1.25 ], focal_point: [ 0.0, -0.25, 0.8 ],
+        cone_angle: 45, color: [ 1, 1, 1 ] }
+)";
+
+struct BaselineScene
+{
+  const char* name;
+  std::string text;
+};
+
+std::vector<BaselineScene> BaselineScenes()
+{
+  const std::string cam = kBaselineCamera;
+  return {
+    { "LitFlat", cam + "lighting:\n  shading: flat\n  shadows: 0\n" + kOneSpot + kTorus },
+    { "LitGouraud", cam + "lighting:\n  shading: gouraud\n  shadows: 0\n" + kOneSpot + kTorus },
+    { "ThreeSpotlights",
+      cam + "lighting:\n  shading: gouraud\n  shadows: 1\n  global_ambient: [0.1, 0.1, 0.1]\n"
+            "  lights:\n"
+            "    - { type: spot, position: [ 0.3, -0.25, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
+            " cone_angle: 30, color: [ 1.0, 0.15, 0.15 ] }\n"
+            "    - { type: spot, position: [ -0.15, 0.0, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
+            " cone_angle: 30, color: [ 0.15, 1.0, 0.15 ] }\n"
+            "    - { type: spot, position: [ -0.15, -0.5, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
+            " cone_angle: 30, color: [ 0.2, 0.3, 1.0 ] }\n" +
+        kTorus },
+    { "ShadowsOff", cam + "lighting:\n  shading: gouraud\n  shadows: 0\n" + kSlantSpot + kBoxOnPlate },
+    { "ShadowsOn", cam + "lighting:\n  shading: gouraud\n  shadows: 1\n" + kSlantSpot + kBoxOnPlate },
+    { "TexturedBox",
+      cam + "lighting:\n  shading: gouraud\n  shadows: 0\n  global_ambient: [0.4, 0.4, 0.4]\n" +
+        kOneSpot +
+        "objects:\n  - { type: box, size: [ 0.3, 0.2, 0.15 ], resolution: 16, texture: checker,\n"
+        "      translate: [ 0.0, -0.22, 0.85 ], rotate: [ 0, 0, 25 ], color: [ 1, 1, 1 ] }\n" },
+  };
+}
+
+class ImageBaseline : public ::testing::TestWithParam<int>
+{
+};
+} // namespace
+
+TEST_P(ImageBaseline, MatchesTheBaseline)
+{
+  const BaselineScene scene = BaselineScenes()[GetParam()];
+  vtksys::SystemTools::MakeDirectory(CATAR_TEST_OUTPUT_DIR);
+  const std::string path = std::string(CATAR_TEST_OUTPUT_DIR) + "/" + scene.name + ".yaml";
+  std::ofstream(path) << scene.text;
+  vtkNew<vtkCatadioptricSceneRenderer> renderer;
+  renderer->SetSceneFileName(path.c_str());
+  ASSERT_TRUE(renderer->Render()) << renderer->GetLastError();
+  CompareWithBaseline(renderer->GetOutput(), scene.name);
+}
+
+INSTANTIATE_TEST_SUITE_P(Lighting, ImageBaseline, ::testing::Range(0, 6),
+  [](const ::testing::TestParamInfo<int>& info) {
+    return std::string(BaselineScenes()[info.param].name);
+  });
 
 TEST(DemoScene, ObjectsLandWhereTheCameraProjectsThem)
 {

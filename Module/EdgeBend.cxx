@@ -1,0 +1,46 @@
+#include "EdgeBend.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace catar
+{
+
+double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b)
+{
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  double t = len2 > 0.0 ? (p - a).dot(ab) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return (p - (a + t * ab)).norm();
+}
+
+double EdgeBendPixels(const SphereProjector& projector, const Vec3& aWorld, const Vec3& bWorld,
+  int samples, SolverType solver)
+{
+  const ProjectedPoint pa = projector.ProjectWorld(aWorld, solver);
+  const ProjectedPoint pb = projector.ProjectWorld(bWorld, solver);
+  if (!HasProjection(pa.status) || !HasProjection(pb.status))
+  {
+    return -1.0;
+  }
+  if (pa.status != ProjectionStatus::Valid && pb.status != ProjectionStatus::Valid)
+  {
+    return -1.0;
+  }
+  samples = std::max(samples, 1);
+  double bend = 0.0;
+  for (int k = 1; k <= samples; ++k)
+  {
+    const double t = static_cast<double>(k) / (samples + 1);
+    const ProjectedPoint pm = projector.ProjectWorld(aWorld + t * (bWorld - aWorld), solver);
+    if (!HasProjection(pm.status))
+    {
+      return -1.0;
+    }
+    bend = std::max(bend, DistanceToSegment(pm.pixel, pa.pixel, pb.pixel));
+  }
+  return std::isfinite(bend) ? bend : -1.0;
+}
+
+} // namespace catar

@@ -1,0 +1,27 @@
+// CatadioptricAR Core: how much the mirror bends a straight 3D edge in the image.
+//
+// The compositor draws the image of a 3D edge as the straight segment between the images of its
+// ends; the exact image of the edge is a curve. The bend of the edge is the largest distance, in
+// pixels, from the exact images of points along the edge to that segment. It is the error of the
+// straight-edge approximation that remeshing to a pixel tolerance bounds.
+#ifndef catarEdgeBend_h
+#define catarEdgeBend_h
+
+#include "SphereProjection.h"
+
+namespace catar
+{
+
+/// Bend in pixels of the straight edge a-b (world coordinates): the largest distance from the
+/// exact images of a + t (b - a), t = k / (samples + 1), k = 1..samples, to the segment between
+/// the images of a and b. Returns -1 when the edge is not seen: an end or a sample has no
+/// projection (see HasProjection), or neither end lies inside the image. Never NaN.
+double EdgeBendPixels(const SphereProjector& projector, const Vec3& aWorld, const Vec3& bWorld,
+  int samples = 1, SolverType solver = SolverType::Quartic);
+
+/// Distance from point p to the segment a-b (2D).
+double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b);
+
+} // namespace catar
+
+#endif

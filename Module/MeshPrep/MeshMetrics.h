@@ -1,0 +1,4 @@
+#ifndef catarMeshMetrics_h
+#define catarMeshMetrics_h
+#include "TriangleMesh.h"
+#endif

@@ -1,0 +1,4 @@
+#ifndef catarMeshRepair_h
+#define catarMeshRepair_h
+#include "TriangleMesh.h"
+#endif

@@ -1,0 +1,2 @@
+// Placeholder: filled in by the mesh-preparation work.
+#include "PointSetSurface.h"

@@ -1,0 +1,4 @@
+#ifndef catarPointSetSurface_h
+#define catarPointSetSurface_h
+#include "TriangleMesh.h"
+#endif

@@ -1,0 +1,4 @@
+#ifndef catarRemeshing_h
+#define catarRemeshing_h
+#include "TriangleMesh.h"
+#endif

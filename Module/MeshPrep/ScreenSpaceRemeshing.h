@@ -1,0 +1,4 @@
+#ifndef catarScreenSpaceRemeshing_h
+#define catarScreenSpaceRemeshing_h
+#include "TriangleMesh.h"
+#endif

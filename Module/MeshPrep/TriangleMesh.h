@@ -1,0 +1,49 @@
+// CatadioptricAR MeshPrep: a plain indexed triangle mesh, the exchange format between the VTK
+// filters and the mesh-preparation algorithms (CGAL, OpenMesh). VTK-free.
+#ifndef catarTriangleMesh_h
+#define catarTriangleMesh_h
+
+#include "CameraModel.h" // Vec3
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace catar
+{
+namespace mesh
+{
+
+/// A per-point attribute carried through remeshing (texture coordinates, normals, colours...):
+/// `components` values per point, point after point.
+struct PointAttribute
+{
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+
+/// An indexed triangle mesh with per-point attributes. Triangles are counter-clockwise seen from
+/// outside (their normal (p1-p0)x(p2-p0) points out) when the surface is oriented.
+struct TriangleMesh
+{
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<PointAttribute> pointData; ///< each with points.size() * components values
+
+  std::size_t NumberOfPoints() const { return this->points.size(); }
+  std::size_t NumberOfTriangles() const { return this->triangles.size(); }
+  bool Empty() const { return this->triangles.empty(); }
+};
+
+/// Messages a mesh algorithm reports without failing (repairs made, input ignored): shown to the
+/// user as warnings by the VTK filters.
+using Warnings = std::vector<std::string>;
+
+/// Progress callback: fraction in [0, 1]. May be empty.
+using ProgressFunction = void (*)(double fraction, void* clientData);
+
+} // namespace mesh
+} // namespace catar
+
+#endif
