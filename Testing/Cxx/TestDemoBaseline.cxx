@@ -19,9 +19,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -294,4 +296,58 @@ TEST(DemoScene, ObjectsLandWhereTheCameraProjectsThem)
   // image is the background.
   const double away[3] = { 0.0, -1.5, 1.0 };
   EXPECT_EQ(differs(away), 0);
+}
+
+// A mesh that carries its own texture coordinates (OBJ) with an image texture: the textured cow
+// 'spot' from the shared data, when present. Its texture's black patches must show: rendered
+// with and without the texture, many pixels of the object differ strongly.
+TEST(TexturedMesh, ObjTextureCoordinatesAndImage)
+{
+  const std::string scene = std::string(CATAR_SOURCE_DIR) + "/Data/scenes/spot-textured.yaml";
+  const std::string obj =
+    std::string(CATAR_SOURCE_DIR) + "/../shared/data/spot/spot_triangulated.obj";
+  if (!vtksys::SystemTools::FileExists(obj))
+  {
+    GTEST_SKIP() << "shared data absent: " << obj;
+  }
+  vtkNew<vtkCatadioptricSceneRenderer> textured;
+  textured->SetSceneFileName(scene.c_str());
+  ASSERT_TRUE(textured->Render()) << textured->GetLastError();
+  // The same scene without the texture key.
+  std::ifstream in(scene);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t key = text.find("texture: ");
+  ASSERT_NE(key, std::string::npos);
+  text.erase(key, text.find(',', key) - key + 1);
+  // Written elsewhere, so relative paths become absolute.
+  const std::string dir = std::string(CATAR_SOURCE_DIR) + "/Data/scenes/";
+  for (std::size_t at = text.find(" ../"); at != std::string::npos; at = text.find(" ../", at + 4))
+  {
+    text.insert(at + 1, dir);
+  }
+  vtksys::SystemTools::MakeDirectory(CATAR_TEST_OUTPUT_DIR);
+  const std::string plainPath = std::string(CATAR_TEST_OUTPUT_DIR) + "/spot-plain.yaml";
+  std::ofstream(plainPath) << text;
+  vtkNew<vtkCatadioptricSceneRenderer> plain;
+  plain->SetSceneFileName(plainPath.c_str());
+  ASSERT_TRUE(plain->Render()) << plain->GetLastError();
+  vtkImageData* a = textured->GetOutput();
+  vtkImageData* b = plain->GetOutput();
+  const vtkIdType n = a->GetNumberOfPoints();
+  ASSERT_EQ(n, b->GetNumberOfPoints());
+  const auto* pa = static_cast<const unsigned char*>(a->GetScalarPointer());
+  const auto* pb = static_cast<const unsigned char*>(b->GetScalarPointer());
+  vtkIdType changed = 0, darker = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    int d = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      d = std::max(d, std::abs(int(pa[4 * i + k]) - int(pb[4 * i + k])));
+    }
+    changed += d > 40;
+    darker += (pa[4 * i] + 100 < pb[4 * i]); // black patches on a white cow
+  }
+  EXPECT_GT(changed, 1000);
+  EXPECT_GT(darker, 500);
 }
