@@ -1,12 +1,14 @@
 // catadioptric-render: renders a scene file (or the built-in demo) to a PNG and prints the time
 // of each stage.
 //
-//   catadioptric-render [SCENE] [-o OUT.png] [--repeat N] [--print-demo-scene]
+//   catadioptric-render [SCENE] [-o OUT.png] [--repeat N] [--target-area A | --pixel-tolerance P]
+//                       [--print-demo-scene]
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkNew.h"
 #include "vtkSMPTools.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -17,12 +19,16 @@ namespace
 void Usage(FILE* out)
 {
   std::fprintf(out,
-    "usage: catadioptric-render [SCENE] [-o OUT.png] [--repeat N] [--print-demo-scene]\n"
+    "usage: catadioptric-render [SCENE] [-o OUT.png] [--repeat N]\n"
+    "                           [--target-area A | --pixel-tolerance P] [--print-demo-scene]\n"
     "\n"
     "Renders SCENE (YAML or JSON, see README \"Scene files\") to OUT.png (default\n"
     "catadioptric-render.png) and prints the time of each stage. Without SCENE it renders the\n"
     "built-in demo scene. --repeat N renders N frames and reports the per-frame stages of the\n"
-    "last one. --print-demo-scene writes the demo scene's YAML to standard output.\n");
+    "last one. --target-area A remeshes every object to triangles of about A square metres;\n"
+    "--pixel-tolerance P remeshes every object so that no visible edge bends more than P pixels\n"
+    "in the image (both override the scene's 'remesh' settings). --print-demo-scene writes the\n"
+    "demo scene's YAML to standard output.\n");
 }
 } // namespace
 
@@ -31,6 +37,8 @@ int main(int argc, char* argv[])
   std::string scene;
   std::string outName = "catadioptric-render.png";
   int repeat = 1;
+  double targetArea = 0.0;
+  double pixelTolerance = 0.0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -54,6 +62,23 @@ int main(int argc, char* argv[])
       if (repeat < 1)
       {
         std::fprintf(stderr, "catadioptric-render: --repeat needs a positive number\n");
+        return 2;
+      }
+    }
+    else if ((arg == "--target-area" || arg == "--pixel-tolerance") && i + 1 < argc)
+    {
+      char* end = nullptr;
+      const double value = std::strtod(argv[++i], &end);
+      if (!end || *end != '\0' || !(value > 0.0) || !std::isfinite(value))
+      {
+        std::fprintf(stderr, "catadioptric-render: %s needs a positive number\n", arg.c_str());
+        return 2;
+      }
+      (arg == "--target-area" ? targetArea : pixelTolerance) = value;
+      if (targetArea > 0.0 && pixelTolerance > 0.0)
+      {
+        std::fprintf(
+          stderr, "catadioptric-render: give --target-area or --pixel-tolerance, not both\n");
         return 2;
       }
     }
@@ -81,6 +106,8 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkCatadioptricSceneRenderer> renderer;
   renderer->SetSceneFileName(scene.empty() ? nullptr : scene.c_str());
+  renderer->SetRemeshTargetArea(targetArea);
+  renderer->SetRemeshPixelTolerance(pixelTolerance);
   for (int f = 0; f < repeat; ++f)
   {
     if (!renderer->Render())
@@ -104,6 +131,10 @@ int main(int argc, char* argv[])
   std::printf("image: %d x %d, %lld triangles, SMP backend %s (%d threads)\n", cam->GetImageWidth(),
     cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
     vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
+  if (*renderer->GetMeshReport())
+  {
+    std::printf("remeshed:\n%s", renderer->GetMeshReport());
+  }
   for (int s = 0; s < renderer->GetNumberOfStages(); ++s)
   {
     std::printf("  %-11s %9.2f ms\n", renderer->GetStageName(s), 1e3 * renderer->GetStageTime(s));

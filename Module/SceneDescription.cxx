@@ -60,7 +60,68 @@ Vec3 ColorOr(const cv::FileNode& parent, const std::string& key, const Vec3& fal
   return c;
 }
 
-SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int index)
+// `remesh: none`, `remesh: { target_area: A }` or `remesh: { pixel_tolerance: P }` (plus
+// iterations, feature_angle), starting from `fallback`.
+SceneRemesh ReadRemesh(const cv::FileNode& node, const SceneRemesh& fallback)
+{
+  SceneRemesh r = fallback;
+  if (node.empty() || node.isNone())
+  {
+    return r;
+  }
+  if (node.isString())
+  {
+    if (static_cast<std::string>(node) != "none")
+    {
+      throw fs::ParseError("'remesh' must be 'none' or a map");
+    }
+    r.mode = "none";
+    return r;
+  }
+  if (!node.isMap())
+  {
+    throw fs::ParseError("'remesh' must be 'none' or a map");
+  }
+  const bool area = !node["target_area"].empty();
+  const bool pixels = !node["pixel_tolerance"].empty();
+  if (area && pixels)
+  {
+    throw fs::ParseError("remesh: give 'target_area' or 'pixel_tolerance', not both");
+  }
+  if (area)
+  {
+    r.mode = "area";
+    r.targetArea = fs::Number(node, "target_area");
+    if (!(r.targetArea > 0.0) || !std::isfinite(r.targetArea))
+    {
+      throw fs::ParseError("remesh: 'target_area' must be a positive number (m^2)");
+    }
+  }
+  if (pixels)
+  {
+    r.mode = "pixels";
+    r.pixelTolerance = fs::Number(node, "pixel_tolerance");
+    if (!(r.pixelTolerance > 0.0) || !std::isfinite(r.pixelTolerance))
+    {
+      throw fs::ParseError("remesh: 'pixel_tolerance' must be a positive number (pixels)");
+    }
+  }
+  const double it = fs::Number(node, "iterations", r.iterations);
+  if (it < 1 || it > 100 || it != std::floor(it))
+  {
+    throw fs::ParseError("remesh: 'iterations' must be an integer in [1, 100]");
+  }
+  r.iterations = static_cast<int>(it);
+  r.featureAngle = fs::Number(node, "feature_angle", r.featureAngle);
+  if (!(r.featureAngle >= 0.0 && r.featureAngle <= 180.0))
+  {
+    throw fs::ParseError("remesh: 'feature_angle' must be in [0, 180] degrees");
+  }
+  return r;
+}
+
+SceneObject ReadObject(
+  const cv::FileNode& node, const std::string& baseDir, int index, const SceneRemesh& defaultRemesh)
 {
   std::ostringstream where;
   where << "objects[" << index << "]";
@@ -144,6 +205,7 @@ SceneObject ReadObject(const cv::FileNode& node, const std::string& baseDir, int
     {
       o.texture = Resolve(baseDir, o.texture);
     }
+    o.remesh = ReadRemesh(node["remesh"], defaultRemesh);
     const cv::FileNode material = node["material"];
     if (!material.empty() && !material.isNone())
     {
@@ -338,6 +400,7 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
     scene.background.samples = static_cast<int>(s);
   }
   scene.lighting = ReadLighting(root["lighting"]);
+  scene.remesh = ReadRemesh(root["remesh"], SceneRemesh());
   const cv::FileNode objects = root["objects"];
   if (!objects.empty() && !objects.isNone())
   {
@@ -348,7 +411,7 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
     int i = 0;
     for (cv::FileNodeIterator it = objects.begin(); it != objects.end(); ++it, ++i)
     {
-      scene.objects.push_back(ReadObject(*it, baseDir, i));
+      scene.objects.push_back(ReadObject(*it, baseDir, i, scene.remesh));
     }
   }
   out = scene;

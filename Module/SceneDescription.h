@@ -14,6 +14,17 @@
 
 namespace catar
 {
+/// How an object's mesh is prepared before projection (vtkCatadioptricRemesher): kept as it is,
+/// remeshed to a target triangle area, or to a pixel tolerance through the scene's camera.
+struct SceneRemesh
+{
+  std::string mode = "none";   ///< "none", "area" or "pixels"
+  double targetArea = 1.2e-5;  ///< m^2 (after the object's scale), mode "area"
+  double pixelTolerance = 0.5; ///< largest edge bend in pixels, mode "pixels"
+  int iterations = 3;
+  double featureAngle = 60.0; ///< degrees: sharper edges are kept
+};
+
 /// One object of a scene.
 struct SceneObject
 {
@@ -48,6 +59,8 @@ struct SceneObject
   double specular = 0.3;
   double specularPower = 20.0;
   Vec3 specularColor = Vec3(1, 1, 1);
+  /// Mesh preparation; the scene's `remesh` unless the object has its own.
+  SceneRemesh remesh;
 };
 
 /// A light of the scene (world coordinates; colours in [0,1], multiplied by intensity).
@@ -91,6 +104,7 @@ struct SceneDescription
   SolverType solver = SolverType::Quartic;
   SceneBackground background;
   SceneLighting lighting;
+  SceneRemesh remesh; ///< default of every object
   std::vector<SceneObject> objects;
 };
 

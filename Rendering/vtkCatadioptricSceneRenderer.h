@@ -36,6 +36,20 @@ public:
   vtkGetStringMacro(SceneFileName);
   ///@}
 
+  ///@{
+  /// Remeshing of every object, overriding the scene file's `remesh` settings: a target triangle
+  /// area (m^2) or, when that is 0, a pixel tolerance (largest edge bend in pixels through the
+  /// scene's camera). 0 (default) keeps the scene's settings. Applied at the next LoadScene().
+  vtkSetClampMacro(RemeshTargetArea, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RemeshTargetArea, double);
+  vtkSetClampMacro(RemeshPixelTolerance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RemeshPixelTolerance, double);
+  ///@}
+
+  /// One line per remeshed object of the last LoadScene(): triangle counts, steps, achieved edge
+  /// bend ("" when nothing was remeshed).
+  const char* GetMeshReport();
+
   /// Reads the scene and builds the pipeline (meshes are prepared here). Returns false on a bad
   /// scene (see GetLastError()). Render() calls it when needed.
   bool LoadScene();
@@ -80,6 +94,8 @@ protected:
   ~vtkCatadioptricSceneRenderer() override;
 
   char* SceneFileName = nullptr;
+  double RemeshTargetArea = 0.0;
+  double RemeshPixelTolerance = 0.0;
 
 private:
   vtkCatadioptricSceneRenderer(const vtkCatadioptricSceneRenderer&) = delete;

@@ -5,6 +5,8 @@
 
 #include "CameraModel.h" // Vec3
 
+#include <Eigen/Geometry> // Vec3::cross
+
 #include <array>
 #include <string>
 #include <vector>

@@ -152,3 +152,44 @@ objects:
                                                        << "'";
   }
 }
+
+TEST(SceneDescription, RemeshDefaultsAndOverrides)
+{
+  const std::string text = std::string("%YAML:1.0\n---\n") + kCamera + R"(
+remesh: { target_area: 2.0e-5, feature_angle: 45 }
+objects:
+  - { type: box }
+  - { type: box, remesh: { pixel_tolerance: 0.25, iterations: 5 } }
+  - { type: box, remesh: none }
+)";
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(ParseScene(text, "", s, error)) << error;
+  EXPECT_EQ(s.remesh.mode, "area");
+  ASSERT_EQ(s.objects.size(), 3u);
+  EXPECT_EQ(s.objects[0].remesh.mode, "area");
+  EXPECT_DOUBLE_EQ(s.objects[0].remesh.targetArea, 2.0e-5);
+  EXPECT_DOUBLE_EQ(s.objects[0].remesh.featureAngle, 45.0);
+  EXPECT_EQ(s.objects[1].remesh.mode, "pixels");
+  EXPECT_DOUBLE_EQ(s.objects[1].remesh.pixelTolerance, 0.25);
+  EXPECT_EQ(s.objects[1].remesh.iterations, 5);
+  EXPECT_EQ(s.objects[2].remesh.mode, "none");
+  // Without a remesh key, nothing is remeshed.
+  SceneDescription plain;
+  ASSERT_TRUE(ParseScene(std::string("%YAML:1.0\n---\n") + kCamera + "objects: [ { type: box } ]\n",
+    "", plain, error))
+    << error;
+  EXPECT_EQ(plain.objects[0].remesh.mode, "none");
+  // Errors name the key.
+  for (const auto& bad : { std::make_pair("remesh: { target_area: -1 }", "target_area"),
+         std::make_pair("remesh: { pixel_tolerance: 0 }", "pixel_tolerance"),
+         std::make_pair("remesh: { target_area: 1e-5, pixel_tolerance: 1 }", "not both"),
+         std::make_pair("remesh: sometimes", "remesh"),
+         std::make_pair("remesh: { target_area: 1e-5, iterations: 0 }", "iterations") })
+  {
+    SceneDescription r;
+    EXPECT_FALSE(
+      ParseScene(std::string("%YAML:1.0\n---\n") + kCamera + bad.first + "\n", "", r, error));
+    EXPECT_NE(error.find(bad.second), std::string::npos) << error;
+  }
+}

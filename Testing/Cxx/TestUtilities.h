@@ -23,6 +23,21 @@ public:
   int Count = 0;
   std::string Last;
 };
+
+/// Counts the warning events of the objects it observes and keeps them all.
+class WarningCounter : public vtkCommand
+{
+public:
+  static WarningCounter* New() { return new WarningCounter; }
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    ++this->Count;
+    this->All += callData ? static_cast<const char*>(callData) : "";
+  }
+  void Watch(vtkObject* object) { object->AddObserver(vtkCommand::WarningEvent, this); }
+  int Count = 0;
+  std::string All;
+};
 } // namespace catar_test
 
 #endif

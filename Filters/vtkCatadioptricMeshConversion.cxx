@@ -1,0 +1,196 @@
+#include "vtkCatadioptricMeshConversion.h"
+
+#include "TriangleMesh.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkGenericCell.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStaticCellLocator.h"
+
+#include <cmath>
+
+void vtkCatadioptricMeshConversion::ToTriangleMesh(
+  vtkPolyData* input, catar::mesh::TriangleMesh& mesh, std::vector<std::string>& warnings)
+{
+  mesh = catar::mesh::TriangleMesh();
+  const vtkIdType nPoints = input->GetNumberOfPoints();
+  mesh.points.resize(nPoints);
+  for (vtkIdType i = 0; i < nPoints; ++i)
+  {
+    input->GetPoint(i, mesh.points[i].data());
+  }
+  const vtkIdType ignored = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  if (ignored > 0)
+  {
+    warnings.push_back(std::to_string(input->GetNumberOfVerts()) + " vertex cells and " +
+      std::to_string(input->GetNumberOfLines()) + " line cells ignored: only surfaces are remeshed");
+  }
+  auto add = [&](vtkIdType a, vtkIdType b, vtkIdType c) {
+    mesh.triangles.push_back({ static_cast<int>(a), static_cast<int>(b), static_cast<int>(c) });
+  };
+  vtkIdType nPolygons = 0;
+  auto polys = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    polys->GetCurrentCell(n, ids);
+    nPolygons += n > 3;
+    for (vtkIdType k = 1; k + 1 < n; ++k) // fan
+    {
+      add(ids[0], ids[k], ids[k + 1]);
+    }
+  }
+  if (nPolygons > 0)
+  {
+    warnings.push_back(std::to_string(nPolygons) + " polygons with more than 3 points split "
+                                                   "into triangles");
+  }
+  auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    strips->GetCurrentCell(n, ids);
+    for (vtkIdType k = 0; k + 2 < n; ++k) // alternate orientation along the strip
+    {
+      if (k % 2 == 0)
+      {
+        add(ids[k], ids[k + 1], ids[k + 2]);
+      }
+      else
+      {
+        add(ids[k + 1], ids[k], ids[k + 2]);
+      }
+    }
+  }
+  vtkPointData* pd = input->GetPointData();
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pd->GetArray(a);
+    if (!array || !array->GetName() || array->GetNumberOfTuples() != nPoints)
+    {
+      continue;
+    }
+    catar::mesh::PointAttribute attribute;
+    attribute.name = array->GetName();
+    attribute.components = array->GetNumberOfComponents();
+    attribute.values.resize(static_cast<size_t>(nPoints) * attribute.components);
+    for (vtkIdType i = 0; i < nPoints; ++i)
+    {
+      for (int c = 0; c < attribute.components; ++c)
+      {
+        attribute.values[i * attribute.components + c] = array->GetComponent(i, c);
+      }
+    }
+    mesh.pointData.push_back(std::move(attribute));
+  }
+}
+
+void vtkCatadioptricMeshConversion::FromTriangleMesh(
+  const catar::mesh::TriangleMesh& mesh, vtkPolyData* prototype, vtkPolyData* output)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.points.size()));
+  for (size_t i = 0; i < mesh.points.size(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), mesh.points[i].data());
+  }
+  vtkNew<vtkCellArray> triangles;
+  triangles->AllocateExact(static_cast<vtkIdType>(mesh.triangles.size()),
+    3 * static_cast<vtkIdType>(mesh.triangles.size()));
+  for (const auto& t : mesh.triangles)
+  {
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    triangles->InsertNextCell(3, ids);
+  }
+  output->Initialize();
+  output->SetPoints(points);
+  output->SetPolys(triangles);
+  vtkPointData* in = prototype ? prototype->GetPointData() : nullptr;
+  vtkPointData* out = output->GetPointData();
+  const vtkIdType n = static_cast<vtkIdType>(mesh.points.size());
+  for (const auto& attribute : mesh.pointData)
+  {
+    vtkDataArray* model = in ? in->GetArray(attribute.name.c_str()) : nullptr;
+    vtkSmartPointer<vtkDataArray> array = model
+      ? vtk::TakeSmartPointer(model->NewInstance())
+      : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New());
+    array->SetName(attribute.name.c_str());
+    array->SetNumberOfComponents(attribute.components);
+    array->SetNumberOfTuples(n);
+    const bool isNormals = model && in->GetNormals() == model && attribute.components == 3;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const double* v = attribute.values.data() + i * attribute.components;
+      double scale = 1.0;
+      if (isNormals)
+      {
+        const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        scale = len > 0.0 ? 1.0 / len : 0.0;
+      }
+      for (int c = 0; c < attribute.components; ++c)
+      {
+        array->SetComponent(i, c, scale * v[c]);
+      }
+    }
+    out->AddArray(array);
+    if (model && in->GetScalars() == model)
+    {
+      out->SetScalars(array);
+    }
+    if (isNormals)
+    {
+      out->SetNormals(array);
+    }
+    if (model && in->GetTCoords() == model)
+    {
+      out->SetTCoords(array);
+    }
+  }
+}
+
+void vtkCatadioptricMeshConversion::TransferCellData(vtkPolyData* input, vtkPolyData* output)
+{
+  vtkCellData* in = input->GetCellData();
+  if (in->GetNumberOfArrays() == 0 || input->GetNumberOfCells() == 0)
+  {
+    return;
+  }
+  vtkNew<vtkStaticCellLocator> locator;
+  locator->SetDataSet(input);
+  locator->BuildLocator();
+  vtkCellData* out = output->GetCellData();
+  const vtkIdType nCells = output->GetNumberOfCells();
+  out->CopyAllocate(in, nCells);
+  vtkNew<vtkGenericCell> cell;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < nCells; ++c)
+  {
+    output->GetCellPoints(c, ids);
+    double centroid[3] = { 0.0, 0.0, 0.0 };
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      double p[3];
+      output->GetPoint(ids->GetId(k), p);
+      for (int j = 0; j < 3; ++j)
+      {
+        centroid[j] += p[j] / ids->GetNumberOfIds();
+      }
+    }
+    double closest[3], dist2;
+    vtkIdType cellId = -1;
+    int subId;
+    locator->FindClosestPoint(centroid, closest, cell, cellId, subId, dist2);
+    out->CopyData(in, cellId >= 0 ? cellId : 0, c);
+  }
+}
