@@ -18,6 +18,8 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 vtkStandardNewMacro(vtkCatadioptricRemesher);
@@ -33,6 +35,42 @@ namespace
 void ReportProgress(double fraction, void* clientData)
 {
   static_cast<vtkCatadioptricRemesher*>(clientData)->UpdateProgress(0.1 + 0.8 * fraction);
+}
+
+// The default bound on the geometric error in PIXEL_TOLERANCE mode: the distance that moves the
+// image by the tolerance where the object is magnified most (its largest image scale over up to
+// 4096 of its points), so that coarsening changes the object's image by at most the tolerance
+// too. Kept between 1e-4 and 2e-2 of the bounding-box diagonal; 0 (the core's default, 1e-3 of
+// the diagonal) when no point is seen.
+double GeometricErrorForTolerance(
+  const catar::mesh::TriangleMesh& mesh, const catar::SphereProjector& projector, double tolerance)
+{
+  if (mesh.points.empty())
+  {
+    return 0.0;
+  }
+  catar::Vec3 lo = mesh.points.front(), hi = lo;
+  for (const catar::Vec3& p : mesh.points)
+  {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diagonal = (hi - lo).norm();
+  if (!(diagonal > 0.0) || !std::isfinite(diagonal))
+  {
+    return 0.0;
+  }
+  const std::size_t stride = std::max<std::size_t>(1, mesh.points.size() / 4096);
+  double scale = 0.0;
+  for (std::size_t i = 0; i < mesh.points.size(); i += stride)
+  {
+    scale = std::max(scale, catar::ImageScale(projector, mesh.points[i], 1e-4 * diagonal));
+  }
+  if (!(scale > 0.0))
+  {
+    return 0.0;
+  }
+  return std::min(2e-2 * diagonal, std::max(1e-4 * diagonal, tolerance / scale));
 }
 
 void AddValue(vtkFieldData* fd, const char* name, double value)
@@ -68,7 +106,7 @@ int vtkCatadioptricRemesher::RequestData(
   this->UpdateProgress(0.1);
 
   std::string error, steps;
-  double maxBend = -1.0, meanBend = -1.0;
+  double maxBend = -1.0, meanBend = -1.0, geometricBound = -1.0;
   std::size_t visibleEdges = 0;
   bool ok = false;
   if (this->Mode == REPAIR_ONLY)
@@ -112,7 +150,10 @@ int vtkCatadioptricRemesher::RequestData(
     options.tolerance = this->PixelTolerance;
     options.minEdgeLength = this->MinimumEdgeLength;
     options.maxEdgeLength = this->MaximumEdgeLength;
-    options.maxGeometricError = this->MaximumGeometricError;
+    options.maxGeometricError = this->MaximumGeometricError > 0.0
+      ? this->MaximumGeometricError
+      : GeometricErrorForTolerance(mesh, *projector, this->PixelTolerance);
+    geometricBound = options.maxGeometricError;
     options.protectFeatures = this->ProtectFeatures;
     options.featureAngle = this->FeatureAngle;
     options.maxIterations = this->Iterations;
@@ -161,6 +202,7 @@ int vtkCatadioptricRemesher::RequestData(
     AddValue(fd, "MaximumEdgeBend", maxBend);
     AddValue(fd, "MeanEdgeBend", meanBend);
     AddValue(fd, "VisibleEdges", static_cast<double>(visibleEdges));
+    AddValue(fd, "GeometricErrorBound", geometricBound); // 0: the core's default
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -30,7 +30,7 @@
  * normals are renormalised. Cell data are copied from the input cell nearest to each new cell's
  * centroid (a box keeps its face colours). Field data: the input's, plus RemeshSteps (string),
  * InputTriangles, OutputTriangles, MeanTriangleArea, TriangleAreaP95 and, in PIXEL_TOLERANCE
- * mode, MaximumEdgeBend, MeanEdgeBend (pixels) and VisibleEdges.
+ * mode, MaximumEdgeBend, MeanEdgeBend (pixels), VisibleEdges and GeometricErrorBound.
  */
 #ifndef vtkCatadioptricRemesher_h
 #define vtkCatadioptricRemesher_h
@@ -86,8 +86,10 @@ public:
   ///@}
 
   ///@{
-  /// Bound on the distance to the input surface when PIXEL_TOLERANCE mode coarsens, model units;
-  /// 0: 1e-3 of the bounding box diagonal.
+  /// Bound on the distance to the input surface when PIXEL_TOLERANCE mode coarsens, model units.
+  /// 0 (default): the distance that moves the object's image by PixelTolerance where the mirror
+  /// magnifies it most, kept between 1e-4 and 2e-2 of the bounding-box diagonal (1e-3 of it when
+  /// the object is not seen).
   vtkSetClampMacro(MaximumGeometricError, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MaximumGeometricError, double);
   ///@}

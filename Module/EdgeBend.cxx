@@ -43,4 +43,29 @@ double EdgeBendPixels(const SphereProjector& projector, const Vec3& aWorld, cons
   return std::isfinite(bend) ? bend : -1.0;
 }
 
+double ImageScale(
+  const SphereProjector& projector, const Vec3& pointWorld, double step, SolverType solver)
+{
+  if (!(step > 0.0) || !std::isfinite(step))
+  {
+    return -1.0;
+  }
+  const ProjectedPoint p = projector.ProjectWorld(pointWorld, solver);
+  if (p.status != ProjectionStatus::Valid)
+  {
+    return -1.0;
+  }
+  double scale = 0.0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const ProjectedPoint q = projector.ProjectWorld(pointWorld + step * Vec3::Unit(axis), solver);
+    if (!HasProjection(q.status))
+    {
+      return -1.0;
+    }
+    scale = std::max(scale, (q.pixel - p.pixel).norm() / step);
+  }
+  return std::isfinite(scale) ? scale : -1.0;
+}
+
 } // namespace catar

@@ -19,6 +19,12 @@ namespace catar
 double EdgeBendPixels(const SphereProjector& projector, const Vec3& aWorld, const Vec3& bWorld,
   int samples = 1, SolverType solver = SolverType::Quartic);
 
+/// Image scale at a world point, in pixels per world unit: the largest image displacement of
+/// the point moved by `step` along each world axis, divided by `step`. Returns -1 when the point
+/// is not seen (no valid projection, or a moved point has none). Never NaN.
+double ImageScale(const SphereProjector& projector, const Vec3& pointWorld, double step,
+  SolverType solver = SolverType::Quartic);
+
 /// Distance from point p to the segment a-b (2D).
 double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b);
 

@@ -40,10 +40,12 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -376,6 +378,31 @@ struct ErrorCollector
   }
 };
 
+/// Collects warnings (repairs made) as short lines, without VTK's prefix, instead of printing
+/// them: the scene's remeshing report lists them.
+struct WarningCollector
+{
+  std::vector<std::string> Lines;
+  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    if (!callData)
+    {
+      return;
+    }
+    std::string text = static_cast<const char*>(callData);
+    const std::size_t prefix = text.rfind("): ");
+    if (prefix != std::string::npos)
+    {
+      text = text.substr(prefix + 3);
+    }
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+    {
+      text.pop_back();
+    }
+    static_cast<WarningCollector*>(clientData)->Lines.push_back(text);
+  }
+};
+
 double FieldValue(vtkPolyData* mesh, const char* name)
 {
   vtkDataArray* a = mesh->GetFieldData()->GetArray(name);
@@ -422,6 +449,11 @@ vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::Remesh(vtkPolyData* me
   callback->SetCallback(&ErrorCollector::Callback);
   callback->SetClientData(&errors);
   remesher->AddObserver(vtkCommand::ErrorEvent, callback);
+  WarningCollector warnings;
+  vtkNew<vtkCallbackCommand> warningCallback;
+  warningCallback->SetCallback(&WarningCollector::Callback);
+  warningCallback->SetClientData(&warnings);
+  remesher->AddObserver(vtkCommand::WarningEvent, warningCallback);
   remesher->Update();
   if (remesher->GetErrorCode() != 0 || !errors.Messages.empty())
   {
@@ -441,6 +473,10 @@ vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::Remesh(vtkPolyData* me
   {
     line << ", largest edge bend " << FieldValue(out, "MaximumEdgeBend") << " px (tolerance "
          << remesh.pixelTolerance << ")";
+  }
+  for (std::size_t i = 0; i < warnings.Lines.size(); ++i)
+  {
+    line << (i == 0 ? "; repaired: " : ", ") << warnings.Lines[i];
   }
   report = line.str();
   return out;

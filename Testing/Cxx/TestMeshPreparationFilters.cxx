@@ -246,6 +246,7 @@ TEST(vtkCatadioptricRemesher, PixelToleranceHoldsThroughTheCamera)
   for (const auto& pl : placements)
   {
     auto box = ColouredBox(pl.data(), pl.data() + 3);
+    std::vector<double> bounds;
     for (double tolerance : { 1.0, 0.3 })
     {
       vtkNew<vtkCatadioptricRemesher> remesher;
@@ -264,10 +265,15 @@ TEST(vtkCatadioptricRemesher, PixelToleranceHoldsThroughTheCamera)
       EXPECT_LE(measured, tolerance * (1 + 1e-9));
       EXPECT_NEAR(Field(out, "MaximumEdgeBend"), measured, 1e-6);
       EXPECT_EQ(Field(out, "VisibleEdges"), visible);
+      // The default geometric bound follows the tolerance: 1 px allows more than 0.3 px.
+      EXPECT_GT(Field(out, "GeometricErrorBound"), 0.0);
+      bounds.push_back(Field(out, "GeometricErrorBound"));
       // The straight box edges of the input bend more than the tolerance: it had to refine.
       int inputVisible = 0;
       EXPECT_GT(MeasuredMaximumBend(box, camera, inputVisible), tolerance);
     }
+    ASSERT_EQ(bounds.size(), 2u);
+    EXPECT_NEAR(bounds[1], 0.3 * bounds[0], 1e-12);
   }
 }
 
