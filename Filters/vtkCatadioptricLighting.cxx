@@ -1,5 +1,7 @@
 #include "vtkCatadioptricLighting.h"
 
+#include "vtkCatadioptricLightingSupport.h"
+
 #include "CameraModel.h"
 #include "Lighting.h"
 #include "RayScene.h"
@@ -37,72 +39,6 @@ catar::Vec3 V3(const double* v)
   return catar::Vec3(v[0], v[1], v[2]);
 }
 
-std::vector<catar::LightSource> ConvertLights(vtkLightCollection* lights)
-{
-  std::vector<catar::LightSource> out;
-  vtkCollectionSimpleIterator it;
-  lights->InitTraversal(it);
-  while (vtkLight* l = lights->GetNextLight(it))
-  {
-    if (!l->GetSwitch())
-    {
-      continue;
-    }
-    catar::LightSource s;
-    if (!l->GetPositional())
-    {
-      s.kind = catar::LightSource::Kind::Directional;
-    }
-    else
-    {
-      s.kind =
-        l->GetConeAngle() < 90.0 ? catar::LightSource::Kind::Spot : catar::LightSource::Kind::Point;
-    }
-    s.position = V3(l->GetPosition());
-    s.focalPoint = V3(l->GetFocalPoint());
-    const double i = l->GetIntensity();
-    s.ambient = i * V3(l->GetAmbientColor());
-    s.diffuse = i * V3(l->GetDiffuseColor());
-    s.specular = i * V3(l->GetSpecularColor());
-    s.coneAngle = l->GetConeAngle();
-    s.exponent = l->GetExponent();
-    s.attenuation = V3(l->GetAttenuationValues());
-    out.push_back(s);
-  }
-  return out;
-}
-
-// Area-weighted vertex normals (Newell normals of the polygons, summed at their vertices).
-std::vector<catar::Vec3> VertexNormals(vtkPolyData* mesh)
-{
-  std::vector<catar::Vec3> normals(mesh->GetNumberOfPoints(), catar::Vec3::Zero());
-  vtkCellArray* polys = mesh->GetPolys();
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
-  {
-    polys->GetCellAtId(c, ids);
-    const vtkIdType n = ids->GetNumberOfIds();
-    catar::Vec3 area = catar::Vec3::Zero();
-    for (vtkIdType k = 0; k < n; ++k)
-    {
-      double a[3], b[3];
-      mesh->GetPoint(ids->GetId(k), a);
-      mesh->GetPoint(ids->GetId((k + 1) % n), b);
-      area += V3(a).cross(V3(b));
-    }
-    for (vtkIdType k = 0; k < n; ++k)
-    {
-      normals[ids->GetId(k)] += area;
-    }
-  }
-  for (catar::Vec3& v : normals)
-  {
-    const double len = v.norm();
-    v = len > 0 ? catar::Vec3(v / len) : catar::Vec3(0, 0, 1);
-  }
-  return normals;
-}
-
 unsigned char ToByte(double v)
 {
   return static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, v))));
@@ -126,7 +62,7 @@ struct vtkCatadioptricLighting::Internals
     if (source != this->NormalsSource ||
       this->Normals.size() != static_cast<size_t>(mesh->GetNumberOfPoints()))
     {
-      this->Normals = VertexNormals(mesh);
+      this->Normals = vtkCatadioptricLightingSupport::VertexNormals(mesh);
       this->NormalsSource = source;
     }
     return this->Normals;
@@ -334,18 +270,15 @@ int vtkCatadioptricLighting::RequestData(
 
   // Material and base colours.
   vtkProperty* prop = this->Property;
-  catar::Material material;
-  material.ambient = prop->GetAmbient() * V3(prop->GetAmbientColor());
-  material.diffuse = prop->GetDiffuse() * V3(prop->GetDiffuseColor());
-  material.specular = prop->GetSpecular() * V3(prop->GetSpecularColor());
-  material.emission = V3(this->Emission);
-  material.shininess = prop->GetSpecularPower();
+  const catar::Material material =
+    vtkCatadioptricLightingSupport::ConvertProperty(prop, this->Emission);
   const double opacity = prop->GetOpacity();
   const float solid[4] = { static_cast<float>(prop->GetDiffuseColor()[0]),
     static_cast<float>(prop->GetDiffuseColor()[1]), static_cast<float>(prop->GetDiffuseColor()[2]),
     1.0f };
   const vtkCatadioptricColorArray base(input, this->InputColorArrayName, solid);
-  const std::vector<catar::LightSource> lights = ConvertLights(this->Lights);
+  const std::vector<catar::LightSource> lights =
+    vtkCatadioptricLightingSupport::ConvertLights(this->Lights);
   const catar::Vec3 globalAmbient = V3(this->GlobalAmbient);
   const bool twoSided = this->TwoSidedLighting;
   const int mode = this->ShadingMode;

@@ -6,6 +6,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -101,6 +102,19 @@ int vtkCatadioptricPainterSort::RequestData(
   vtkCellData* outCD = output->GetCellData();
   outCD->CopyAllocate(input->GetCellData(), nOut);
   outCD->CopyData(input->GetCellData(), sourceIds, targetIds);
+  // OriginalCellId: each cell's index in the input, unless the input already carries the ids of
+  // an earlier stage (then they were copied above, reordered with the cells).
+  if (!input->GetCellData()->GetArray("OriginalCellId"))
+  {
+    vtkNew<vtkIdTypeArray> original;
+    original->SetName("OriginalCellId");
+    original->SetNumberOfTuples(nOut);
+    for (vtkIdType i = 0; i < nOut; ++i)
+    {
+      original->SetValue(i, first + order[i]);
+    }
+    outCD->AddArray(original);
+  }
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -8,6 +8,11 @@
  * Cell data is reordered with the cells; points and point data are passed unchanged. Only
  * polygons are kept (vertices, lines and strips are dropped with a warning). With
  * DropInvisibleCells on, cells whose Visible flag is 0 are removed.
+ *
+ * The output gets the cell array OriginalCellId (vtkIdTypeArray): each cell's id in the input
+ * (vertices and lines counted, as vtkPolyData numbers cells), so that results on the sorted mesh
+ * (vtkCatadioptricCompositor's VisibleTriangle ids) refer to the unsorted one. An input that
+ * already has an OriginalCellId array keeps its values, reordered with the cells.
  */
 #ifndef vtkCatadioptricPainterSort_h
 #define vtkCatadioptricPainterSort_h

@@ -120,12 +120,23 @@ Vec3 RoomColor(const RoomEnvironment& room, const Vec3& origin, const Vec3& d)
   }
 }
 
-void RenderEnvironmentRows(const SphereProjector& projector, const RoomEnvironment& room,
-  int samples, const ImageView& target, int y0, int y1)
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+inline std::uint8_t ToByte(double v)
+{
+  return static_cast<std::uint8_t>(std::lround(255.0 * std::min(1.0, std::max(0.0, v))));
+}
+
+// The per-pixel loop shared by every environment: back-projects samples x samples sub-pixel
+// positions of each pixel of rows [y0, y1), averages color(pixel, ray) over them and writes RGBA8
+// (alpha 255).
+template<class SampleColor>
+void RenderRows(const SphereProjector& projector, int samples, const ImageView& target, int y0,
+  int y1, const SampleColor& color)
 {
   samples = std::max(1, std::min(8, samples));
-  const CameraModel& model = projector.GetModel();
-  const Vec3 eye = model.CameraToWorld(Vec3::Zero());
   const double inv = 1.0 / (samples * samples);
   for (int y = std::max(0, y0); y < std::min(target.height, y1); ++y)
   {
@@ -137,29 +148,171 @@ void RenderEnvironmentRows(const SphereProjector& projector, const RoomEnvironme
         for (int sx = 0; sx < samples; ++sx)
         {
           const Vec2 px(x + (sx + 0.5) / samples - 0.5, y + (sy + 0.5) / samples - 0.5);
-          const BackProjectedRay ray = projector.BackProjectWorld(px);
-          if (HasProjection(ray.status))
-          {
-            sum += 0.92 * RoomColor(room, ray.mirrorPoint, ray.direction); // ~92% reflectance
-            continue;
-          }
-          Vec2 xy;
-          if (ray.status == ProjectionStatus::NoReflection && model.PixelToNormalized(px, xy))
-          {
-            const Vec3 d = model.CameraToWorldDirection(Vec3(xy.x(), xy.y(), 1.0).normalized());
-            sum += RoomColor(room, eye, d);
-          }
+          sum += color(px, projector.BackProjectWorld(px));
         }
       }
       sum *= inv;
       std::uint8_t* out = target.pixel(x, y);
       for (int k = 0; k < 3; ++k)
       {
-        out[k] =
-          static_cast<std::uint8_t>(std::lround(255.0 * std::min(1.0, std::max(0.0, sum[k]))));
+        out[k] = ToByte(sum[k]);
       }
       out[3] = 255;
     }
   }
+}
+} // namespace
+
+void RenderEnvironmentRows(const SphereProjector& projector, const RoomEnvironment& room,
+  int samples, const ImageView& target, int y0, int y1)
+{
+  const CameraModel& model = projector.GetModel();
+  const Vec3 eye = model.CameraToWorld(Vec3::Zero());
+  RenderRows(
+    projector, samples, target, y0, y1, [&](const Vec2& px, const BackProjectedRay& ray) -> Vec3 {
+      if (HasProjection(ray.status))
+      {
+        return 0.92 * RoomColor(room, ray.mirrorPoint, ray.direction); // ~92% reflectance
+      }
+      Vec2 xy;
+      if (ray.status == ProjectionStatus::NoReflection && model.PixelToNormalized(px, xy))
+      {
+        const Vec3 d = model.CameraToWorldDirection(Vec3(xy.x(), xy.y(), 1.0).normalized());
+        return RoomColor(room, eye, d);
+      }
+      return Vec3::Zero();
+    });
+}
+
+bool EquirectangularPanorama::IsValid() const
+{
+  return width > 0 && height > 0 && (channels == 3 || channels == 4) &&
+    pixels.size() == static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels;
+}
+
+Vec2 PanoramaPixel(int width, int height, const Vec3& d)
+{
+  const double n = d.norm();
+  double lon = 0.0;
+  double lat = 0.0;
+  if (n > 0.0 && std::isfinite(n))
+  {
+    lon = std::atan2(d.y(), d.x());
+    if (lon <= -kPi)
+    {
+      lon = kPi; // keep x in [-0.5, width - 0.5)
+    }
+    lat = std::asin(std::min(1.0, std::max(-1.0, d.z() / n)));
+  }
+  return Vec2((0.5 - lon / (2.0 * kPi)) * width - 0.5, (0.5 - lat / kPi) * height - 0.5);
+}
+
+Vec3 PanoramaDirection(int width, int height, double x, double y)
+{
+  const double lon = 2.0 * kPi * (0.5 - (x + 0.5) / width);
+  const double lat = std::min(0.5 * kPi, std::max(-0.5 * kPi, kPi * (0.5 - (y + 0.5) / height)));
+  const double c = std::cos(lat);
+  return Vec3(c * std::cos(lon), c * std::sin(lon), std::sin(lat));
+}
+
+Vec3 PanoramaColor(const EquirectangularPanorama& panorama, const Vec3& worldDirection)
+{
+  if (!panorama.IsValid())
+  {
+    return Vec3::Zero();
+  }
+  const int w = panorama.width;
+  const int h = panorama.height;
+  const Vec2 p = PanoramaPixel(w, h, worldDirection);
+  // Longitude wraps: columns i0 and i0 + 1 modulo the width.
+  const double fx = std::floor(p.x());
+  const double tx = p.x() - fx;
+  int i0 = static_cast<int>(fx) % w;
+  if (i0 < 0)
+  {
+    i0 += w;
+  }
+  const int i1 = (i0 + 1) % w;
+  // Latitude clamps: above the first / below the last row centre, that row.
+  const double y = std::min(static_cast<double>(h - 1), std::max(0.0, p.y()));
+  const double fy = std::floor(y);
+  const double ty = y - fy;
+  const int j0 = static_cast<int>(fy);
+  const int j1 = std::min(j0 + 1, h - 1);
+  const std::uint8_t* c00 = panorama.texel(i0, j0);
+  const std::uint8_t* c10 = panorama.texel(i1, j0);
+  const std::uint8_t* c01 = panorama.texel(i0, j1);
+  const std::uint8_t* c11 = panorama.texel(i1, j1);
+  Vec3 c;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double top = (1.0 - tx) * c00[k] + tx * c10[k];
+    const double bottom = (1.0 - tx) * c01[k] + tx * c11[k];
+    c[k] = ((1.0 - ty) * top + ty * bottom) / 255.0;
+  }
+  return c;
+}
+
+EquirectangularPanorama MakeRoomPanorama(
+  const RoomEnvironment& room, const Vec3& viewpoint, int width)
+{
+  EquirectangularPanorama panorama;
+  panorama.width = std::max(2, width + (width & 1));
+  panorama.height = panorama.width / 2;
+  panorama.channels = 3;
+  panorama.pixels.resize(
+    static_cast<std::size_t>(panorama.width) * panorama.height * panorama.channels);
+  RenderRoomPanoramaRows(room, viewpoint, panorama, 0, panorama.height);
+  return panorama;
+}
+
+void RenderRoomPanoramaRows(const RoomEnvironment& room, const Vec3& viewpoint,
+  EquirectangularPanorama& panorama, int j0, int j1)
+{
+  if (!panorama.IsValid())
+  {
+    return;
+  }
+  for (int j = std::max(0, j0); j < std::min(panorama.height, j1); ++j)
+  {
+    for (int i = 0; i < panorama.width; ++i)
+    {
+      const Vec3 c =
+        RoomColor(room, viewpoint, PanoramaDirection(panorama.width, panorama.height, i, j));
+      std::uint8_t* out = panorama.texel(i, j);
+      for (int k = 0; k < 3; ++k)
+      {
+        out[k] = ToByte(c[k]);
+      }
+      if (panorama.channels == 4)
+      {
+        out[3] = 255;
+      }
+    }
+  }
+}
+
+Vec3 PlacedPanoramaColor(
+  const EquirectangularPanorama& panorama, const PanoramaPlacement& placement, const Vec3& d)
+{
+  if (placement.rotation == 0.0)
+  {
+    return PanoramaColor(panorama, d);
+  }
+  // World longitude L shows the panorama's longitude L - rotation.
+  const double a = placement.rotation * kPi / 180.0;
+  const double c = std::cos(a);
+  const double s = std::sin(a);
+  return PanoramaColor(panorama, Vec3(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z()));
+}
+
+void RenderPanoramaRows(const SphereProjector& projector, const EquirectangularPanorama& panorama,
+  const PanoramaPlacement& placement, int samples, const ImageView& target, int y0, int y1)
+{
+  RenderRows(
+    projector, samples, target, y0, y1, [&](const Vec2&, const BackProjectedRay& ray) -> Vec3 {
+      return HasProjection(ray.status) ? PlacedPanoramaColor(panorama, placement, ray.direction)
+                                       : placement.backdrop;
+    });
 }
 } // namespace catar

@@ -1,5 +1,5 @@
-// CatadioptricAR Core: a dependency-free CPU triangle rasteriser (RGBA8 target, optional depth,
-// optional bilinear texture).
+// CatadioptricAR Core: a dependency-free CPU triangle rasteriser (RGBA8 target, optional depth and
+// triangle-id buffers, optional bilinear texture).
 //
 // Conventions
 //  - Pixel (x, y): x to the right, y DOWN (row 0 is the top row, as OpenCV). The centre of pixel
@@ -63,15 +63,37 @@ struct ImageView
 
 /// Optional depth buffer (not owned), one float per pixel, addressed like ImageView with rowStride
 /// counted in floats (may be negative). It must be at least as large as the target image.
+/// write = false makes the buffer read-only: pixels are still depth-tested but the stored depth
+/// is left as it was (how semi-transparent surfaces are drawn after the opaque ones).
 struct DepthView
 {
   float* data = nullptr;        ///< address of the depth of pixel (0, 0)
   int width = 0;                ///< number of columns
   int height = 0;               ///< number of rows
   std::ptrdiff_t rowStride = 0; ///< floats from row y to row y+1 (may be negative)
+  bool write = true;            ///< store the depth of every drawn pixel (false: test only)
 
   /// Address of the depth of pixel (x, y); no bounds check.
   float* at(int x, int y) const { return data + y * rowStride + static_cast<std::ptrdiff_t>(x); }
+};
+
+/// Optional id buffer (not owned), one 64-bit integer per pixel, addressed like ImageView with
+/// rowStride counted in values (may be negative). It must be at least as large as the target
+/// image. The rasteriser writes the triangle's id into every pixel it draws (the pixels whose
+/// colour it composites, after the coverage, clip and depth tests), whatever the alpha: after a
+/// sequence of triangles each pixel holds the id of the last triangle drawn there.
+struct IdView
+{
+  std::int64_t* data = nullptr; ///< address of the id of pixel (0, 0)
+  int width = 0;                ///< number of columns
+  int height = 0;               ///< number of rows
+  std::ptrdiff_t rowStride = 0; ///< values from row y to row y+1 (may be negative)
+
+  /// Address of the id of pixel (x, y); no bounds check.
+  std::int64_t* at(int x, int y) const
+  {
+    return data + y * rowStride + static_cast<std::ptrdiff_t>(x);
+  }
 };
 
 /// Integer clip rectangle [x0, x1) x [y0, y1) in pixels; used to split work into tiles.
@@ -137,8 +159,8 @@ enum class RasterResult
   OutsideGuardBand, ///< a vertex lies outside +-kRasterGuardBand pixels; nothing drawn
   InvalidInput      ///< NaN/Inf in a vertex (position, colour, depth or texture
                     ///< coordinates, whether or not they are used), a target without data or
-                    ///< with a non-positive size, a depth buffer without data or smaller than
-                    ///< the target, or an invalid texture (see TextureView); nothing drawn
+                    ///< with a non-positive size, a depth or id buffer without data or smaller
+                    ///< than the target, or an invalid texture (see TextureView); nothing drawn
 };
 
 /// Name of a RasterResult value (for messages).
@@ -159,7 +181,8 @@ void sampleTexture(const TextureView& texture, float u, float v, float rgba[4]);
 /// Coverage follows the top-left rule on the 1/256 grid.
 /// depth: if non-null, the per-pixel depth (interpolated linearly in screen space from the vertex
 /// depths, stored as float) is tested -- a pixel is drawn only if it is strictly less than the
-/// stored value -- and written where drawn.
+/// stored value -- and written where drawn (unless depth->write is false).
+/// ids: if non-null, id is written into every drawn pixel of the id buffer (see IdView).
 /// clip: only pixels inside clip intersected with the image are read or written. Drawing a
 /// triangle tile by tile with clip rectangles that partition the image gives exactly the same
 /// result as drawing it once over the whole image.
@@ -171,15 +194,17 @@ void sampleTexture(const TextureView& texture, float u, float v, float rgba[4]);
 /// Coverage, clipping, the depth test and the depth written are exactly those of the untextured
 /// drawing. Textured triangles have their own scan loops: untextured ones test nothing about
 /// textures per pixel. An invalid texture (see TextureView) gives InvalidInput.
+/// Without depth buffer and id buffer the scan loops test nothing about either per pixel.
 /// Thread-safe for disjoint clip rectangles; allocates nothing.
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip,
-  const DepthView* depth = nullptr, const TextureView* texture = nullptr);
+  const DepthView* depth = nullptr, const TextureView* texture = nullptr,
+  const IdView* ids = nullptr, std::int64_t id = 0);
 
 /// Convenience overload: clip = the whole image.
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth = nullptr,
-  const TextureView* texture = nullptr);
+  const TextureView* texture = nullptr, const IdView* ids = nullptr, std::int64_t id = 0);
 }
 
 #endif

@@ -377,14 +377,20 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   {
     throw fs::ParseError("'solver' must be 'quartic' or 'iterative'");
   }
+  scene.visibility = fs::String(root, "visibility", scene.visibility);
+  if (scene.visibility != "painter" && scene.visibility != "depth")
+  {
+    throw fs::ParseError(
+      "'visibility' must be 'painter' or 'depth', not '" + scene.visibility + "'");
+  }
   const cv::FileNode bg = root["background"];
   if (bg.isMap())
   {
     scene.background.type = fs::String(bg, "type", "environment");
-    if (scene.background.type != "environment" && scene.background.type != "color" &&
-      scene.background.type != "image")
+    if (scene.background.type != "environment" && scene.background.type != "panorama" &&
+      scene.background.type != "color" && scene.background.type != "image")
     {
-      throw fs::ParseError("background: 'type' must be environment, color or image");
+      throw fs::ParseError("background: 'type' must be environment, panorama, color or image");
     }
     scene.background.color = ColorOr(bg, "color", scene.background.color);
     scene.background.image = Resolve(baseDir, fs::String(bg, "image", ""));
@@ -398,6 +404,13 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
       throw fs::ParseError("background: 'samples' must be an integer in [1, 8]");
     }
     scene.background.samples = static_cast<int>(s);
+    scene.background.panorama = Resolve(baseDir, fs::String(bg, "file", ""));
+    scene.background.rotation = fs::Number(bg, "rotation", scene.background.rotation);
+    if (!std::isfinite(scene.background.rotation))
+    {
+      throw fs::ParseError("background: 'rotation' must be a finite number (degrees)");
+    }
+    scene.background.backdrop = ColorOr(bg, "backdrop", scene.background.backdrop);
   }
   scene.lighting = ReadLighting(root["lighting"]);
   scene.remesh = ReadRemesh(root["remesh"], SceneRemesh());

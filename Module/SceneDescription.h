@@ -89,10 +89,17 @@ struct SceneLighting
 /// Background of the output image.
 struct SceneBackground
 {
-  std::string type = "environment"; ///< "environment" (procedural room), "color" or "image"
+  /// "environment" (procedural room), "panorama" (an equirectangular panorama reflected by the
+  /// mirror), "color" or "image"
+  std::string type = "environment";
   Vec3 color = Vec3(0, 0, 0);
   std::string image; ///< image file for type "image"
-  int samples = 2;   ///< supersampling of the environment (samples x samples per pixel)
+  int samples = 2;   ///< supersampling of the environment/panorama (samples x samples per pixel)
+  /// Type "panorama" (key `file`): an equirectangular image file resolved against the scene
+  /// file's folder; "" = the procedural room rendered into a panorama from the mirror centre.
+  std::string panorama;
+  double rotation = 0.0;               ///< type "panorama": degrees about world +z
+  Vec3 backdrop = Vec3(0.5, 0.5, 0.5); ///< type "panorama": colour around the mirror
 };
 
 struct SceneDescription
@@ -102,6 +109,9 @@ struct SceneDescription
   int width = 0; ///< output size; 0 = the calibration's
   int height = 0;
   SolverType solver = SolverType::Quartic;
+  /// Key `visibility`: "painter" (the paper's painter order, default) or "depth" (a per-pixel
+  /// depth buffer on the path length): vtkCatadioptricCompositor's Visibility.
+  std::string visibility = "painter";
   SceneBackground background;
   SceneLighting lighting;
   SceneRemesh remesh; ///< default of every object

@@ -10,14 +10,20 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkCatadioptricCompositor);
@@ -30,7 +36,9 @@ struct Triangle
   double Depth;
   double YMin;
   double YMax;
-  int Texture; // index into the textures, -1 for none
+  int Texture;  // index into the textures, -1 for none
+  bool Opaque;  // DEPTH_BUFFER: drawn in the first pass, writes depth
+  std::int64_t Id; // meshIndex * 2^32 + cellId (OutputVisibleTriangle)
 };
 
 // The texture coordinates of a mesh: its active TCoords, else an array "TCoords" or
@@ -46,6 +54,66 @@ vtkDataArray* TextureCoordinates(vtkPolyData* mesh)
     }
   }
   return (t && t->GetNumberOfComponents() >= 2) ? t : nullptr;
+}
+// The bands of RequestData with a depth buffer (depthMode) and/or an id buffer (ids: the output
+// array, VTK row order, or null). Each band initialises its own rows of both buffers. In depth
+// mode the opaque triangles come first and write depth; the others only test it.
+void DrawWithBuffers(const catar::ImageView& view, const std::vector<Triangle>& triangles,
+  const std::vector<catar::TextureView>& textures, int bandHeight, bool depthMode,
+  std::int64_t* ids)
+{
+  const int width = view.width;
+  const int height = view.height;
+  const std::ptrdiff_t w = width;
+  std::unique_ptr<float[]> depth(
+    depthMode ? new float[static_cast<size_t>(width) * static_cast<size_t>(height)] : nullptr);
+  catar::DepthView write;
+  if (depthMode)
+  {
+    write.data = depth.get();
+    write.width = width;
+    write.height = height;
+    write.rowStride = w;
+  }
+  catar::DepthView test = write;
+  test.write = false;
+  catar::IdView idView;
+  if (ids)
+  {
+    idView.data = ids + w * (height - 1); // top row (y = 0) is the last VTK row
+    idView.width = width;
+    idView.height = height;
+    idView.rowStride = -w;
+  }
+  const int nBands = (height + bandHeight - 1) / bandHeight;
+  vtkSMPTools::For(0, nBands, 1, [&](vtkIdType b0, vtkIdType b1) {
+    for (vtkIdType b = b0; b < b1; ++b)
+    {
+      const catar::PixelRect band{ 0, static_cast<int>(b * bandHeight), width,
+        static_cast<int>(std::min<vtkIdType>(height, (b + 1) * bandHeight)) };
+      for (int y = band.y0; y < band.y1; ++y)
+      {
+        if (depthMode)
+        {
+          std::fill(write.at(0, y), write.at(0, y) + width, std::numeric_limits<float>::infinity());
+        }
+        if (ids)
+        {
+          std::fill(idView.at(0, y), idView.at(0, y) + width, std::int64_t(-1));
+        }
+      }
+      for (const Triangle& t : triangles)
+      {
+        if (t.YMax < band.y0 - 0.5 || t.YMin > band.y1 - 0.5)
+        {
+          continue;
+        }
+        catar::rasterizeTriangle(view, t.V[0], t.V[1], t.V[2], band,
+          depthMode ? (t.Opaque ? &write : &test) : nullptr,
+          t.Texture >= 0 ? &textures[t.Texture] : nullptr, ids ? &idView : nullptr, t.Id);
+      }
+    }
+  });
 }
 } // namespace
 
@@ -130,6 +198,8 @@ int vtkCatadioptricCompositor::RequestData(
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkImageData* frame = vtkImageData::GetData(inputVector[0]);
   const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
+  const bool depthMode = this->Visibility == DEPTH_BUFFER;
+  const bool wantIds = this->OutputVisibleTriangle;
   this->NumberOfDrawnTriangles = 0;
   this->NumberOfSkippedTriangles = 0;
 
@@ -290,6 +360,24 @@ int vtkCatadioptricCompositor::RequestData(
     view.repeat = this->RepeatTextures;
     textures.push_back(view);
   }
+  // DEPTH_BUFFER: an RGBA texture is opaque when every alpha byte is 255.
+  std::vector<char> opaqueTexture(textures.size(), 1);
+  if (depthMode)
+  {
+    for (size_t t = 0; t < textures.size(); ++t)
+    {
+      const catar::TextureView& v = textures[t];
+      if (v.channels != 4)
+      {
+        continue;
+      }
+      const vtkIdType n = static_cast<vtkIdType>(v.width) * v.height;
+      for (vtkIdType i = 0; i < n && opaqueTexture[t]; ++i)
+      {
+        opaqueTexture[t] = v.data[4 * i + 3] == 255;
+      }
+    }
+  }
 
   // Triangles in painter order.
   std::vector<Triangle> triangles;
@@ -310,6 +398,37 @@ int vtkCatadioptricCompositor::RequestData(
                                "vtkCatadioptricProjection first.");
       return 0;
     }
+    // DEPTH_BUFFER: the per-vertex depth.
+    vtkDataArray* pathLength = nullptr;
+    if (depthMode)
+    {
+      pathLength = mesh->GetPointData()->GetArray("PathLength");
+      if (!pathLength || pathLength->GetNumberOfComponents() != 1 ||
+        pathLength->GetNumberOfTuples() != mesh->GetNumberOfPoints())
+      {
+        vtkErrorMacro("Mesh " << m
+                              << " has no PathLength point array (1 component, one value per "
+                                 "point), which Visibility DEPTH_BUFFER needs: run "
+                                 "vtkCatadioptricProjection first, or use PAINTER.");
+        return 0;
+      }
+    }
+    // OutputVisibleTriangle: the cells' original ids, when the mesh has them.
+    vtkDataArray* originalIds = nullptr;
+    if (wantIds)
+    {
+      originalIds = mesh->GetCellData()->GetArray("OriginalCellId");
+      if (originalIds &&
+        (originalIds->GetNumberOfComponents() != 1 ||
+          originalIds->GetNumberOfTuples() != mesh->GetNumberOfCells()))
+      {
+        vtkErrorMacro("Mesh " << m
+                              << ": the cell array OriginalCellId must have 1 component and one "
+                                 "value per cell.");
+        return 0;
+      }
+    }
+    const std::int64_t meshKey = static_cast<std::int64_t>(m) << 32;
     const float solid[4] = { static_cast<float>(this->Color[0]),
       static_cast<float>(this->Color[1]), static_cast<float>(this->Color[2]), 1.0f };
     const vtkCatadioptricColorArray color(mesh, this->ColorArrayName, solid);
@@ -374,7 +493,15 @@ int vtkCatadioptricCompositor::RequestData(
           v.u = static_cast<float>(tcoords->GetComponent(pid, 0));
           v.v = static_cast<float>(tcoords->GetComponent(pid, 1));
         }
+        if (pathLength)
+        {
+          v.depth = static_cast<float>(pathLength->GetComponent(pid, 0));
+        }
       };
+      const std::int64_t id = wantIds
+        ? meshKey +
+          (originalIds ? static_cast<std::int64_t>(originalIds->GetComponent(cellId, 0)) : cellId)
+        : 0;
       // Fan triangulation of polygons.
       for (vtkIdType k = 1; k + 1 < n; ++k)
       {
@@ -386,6 +513,9 @@ int vtkCatadioptricCompositor::RequestData(
         t.YMin = std::min({ t.V[0].y, t.V[1].y, t.V[2].y });
         t.YMax = std::max({ t.V[0].y, t.V[1].y, t.V[2].y });
         t.Texture = texture;
+        t.Opaque = t.V[0].a >= 1.0f && t.V[1].a >= 1.0f && t.V[2].a >= 1.0f &&
+          (texture < 0 || opaqueTexture[texture]);
+        t.Id = id;
         triangles.push_back(t);
       }
     }
@@ -395,6 +525,12 @@ int vtkCatadioptricCompositor::RequestData(
     // One far-to-near order across meshes; each mesh keeps its own order among equal depths.
     std::stable_sort(triangles.begin(), triangles.end(),
       [](const Triangle& a, const Triangle& b) { return a.Depth > b.Depth; });
+  }
+  if (depthMode)
+  {
+    // Opaque triangles first (they write depth), then the semi-transparent ones in painter order.
+    std::stable_partition(
+      triangles.begin(), triangles.end(), [](const Triangle& t) { return t.Opaque; });
   }
   this->UpdateProgress(0.4);
 
@@ -407,6 +543,37 @@ int vtkCatadioptricCompositor::RequestData(
   view.data = out + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1); // top row (y = 0)
   constexpr int kBand = 32;
   const int nBands = (height + kBand - 1) / kBand;
+  if (depthMode || wantIds)
+  {
+    // Per-pixel ids: an int64 array in the colour image's (VTK) row order. The rasteriser writes
+    // std::int64_t; where vtkTypeInt64 is another 64-bit type (long long), a copy converts.
+    vtkNew<vtkTypeInt64Array> visibleTriangle;
+    std::vector<std::int64_t> idBuffer;
+    std::int64_t* ids = nullptr;
+    if (wantIds)
+    {
+      visibleTriangle->SetName("VisibleTriangle");
+      visibleTriangle->SetNumberOfTuples(nPixels);
+      output->GetPointData()->AddArray(visibleTriangle);
+      if constexpr (std::is_same<vtkTypeInt64, std::int64_t>::value)
+      {
+        ids = reinterpret_cast<std::int64_t*>(visibleTriangle->GetPointer(0)); // same type
+      }
+      else
+      {
+        idBuffer.resize(static_cast<size_t>(nPixels));
+        ids = idBuffer.data();
+      }
+    }
+    DrawWithBuffers(view, triangles, textures, kBand, depthMode, ids);
+    if (!idBuffer.empty())
+    {
+      std::copy(idBuffer.begin(), idBuffer.end(), visibleTriangle->GetPointer(0));
+    }
+    this->NumberOfDrawnTriangles = static_cast<vtkIdType>(triangles.size());
+    this->UpdateProgress(1.0);
+    return 1;
+  }
   vtkSMPTools::For(0, nBands, 1, [&](vtkIdType b0, vtkIdType b1) {
     for (vtkIdType b = b0; b < b1; ++b)
     {
@@ -428,6 +595,11 @@ int vtkCatadioptricCompositor::RequestData(
   return 1;
 }
 
+const char* vtkCatadioptricCompositor::GetVisibilityAsString()
+{
+  return this->Visibility == DEPTH_BUFFER ? "DepthBuffer" : "Painter";
+}
+
 void vtkCatadioptricCompositor::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -441,4 +613,7 @@ void vtkCatadioptricCompositor::PrintSelf(ostream& os, vtkIndent indent)
      << this->BackgroundColor[3] << "\n";
   os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
   os << indent << "RepeatTextures: " << (this->RepeatTextures ? "On" : "Off") << "\n";
+  os << indent << "Visibility: " << this->GetVisibilityAsString() << "\n";
+  os << indent << "OutputVisibleTriangle: " << (this->OutputVisibleTriangle ? "On" : "Off")
+     << "\n";
 }

@@ -14,6 +14,29 @@
  * Several meshes are merged into one far-to-near order by their CentroidDepth. Cells whose Visible
  * flag is 0 are skipped.
  *
+ * Visibility: PAINTER (default, the paper's method) trusts that order: the last triangle drawn in
+ * a pixel is the one seen. DEPTH_BUFFER adds a per-pixel z-test: each triangle carries, at its
+ * vertices, the point array PathLength (mirror point to vertex, written by
+ * vtkCatadioptricProjection), interpolated linearly in screen space across the projected
+ * triangle (as colours are), and a pixel is drawn only where that depth is strictly smaller than
+ * the stored one; interpenetrating and cyclically overlapping triangles, which no painter order
+ * resolves, are then right at every pixel up to the interpolation of the depth. Opaque triangles
+ * (alpha 1 at every vertex and no texture with an alpha below 255) are drawn first and write
+ * their depth, so for them the draw order does not matter; semi-transparent triangles are drawn
+ * after all opaque ones, in painter order, depth-tested against the opaque surfaces but without
+ * writing depth, so they blend over each other in painter order and never hide anything. A mesh
+ * without PathLength is an error in DEPTH_BUFFER mode.
+ *
+ * Visible-triangle ids: with OutputVisibleTriangle on, the output has a second point-data array,
+ * "VisibleTriangle" (vtkTypeInt64Array, one value per pixel, in the same row order as the colour
+ * image): -1 where no triangle was drawn, else meshIndex * 2^32 + cellId of the last triangle
+ * drawn in the pixel (the visible one; with semi-transparent meshes the front-most drawn one),
+ * whatever its alpha. meshIndex is the connection index on input port 1; cellId is the cell's
+ * value in the cell-data array "OriginalCellId" when the mesh has one (vtkCatadioptricPainterSort
+ * writes it, so ids refer to the unsorted mesh), else the cell's index in the mesh. Every triangle
+ * of a polygon's fan gets the polygon's id. Decode with meshIndex = id >> 32 and cellId =
+ * id & 0xFFFFFFFF (cell ids must be below 2^32).
+ *
  * Colour: the array named ColorArrayName (default "Colors") if the mesh has one, as point data
  * (interpolated across each triangle: Gouraud) or cell data (flat); unsigned char arrays are read
  * as 0-255, floating point arrays as 0-1; 3 or 4 components. Otherwise the solid Color. Alpha is
@@ -90,6 +113,29 @@ public:
   vtkGetVector2Macro(ImageSize, int);
   ///@}
 
+  /// How the surface seen in each pixel is chosen (see the class comment).
+  enum Visibilities
+  {
+    PAINTER = 0,     ///< draw in painter order; the last triangle drawn wins (default)
+    DEPTH_BUFFER = 1 ///< per-pixel z-test on the interpolated PathLength
+  };
+  ///@{
+  /// Visibility: PAINTER (default) or DEPTH_BUFFER.
+  vtkSetClampMacro(Visibility, int, PAINTER, DEPTH_BUFFER);
+  vtkGetMacro(Visibility, int);
+  void SetVisibilityToPainter() { this->SetVisibility(PAINTER); }
+  void SetVisibilityToDepthBuffer() { this->SetVisibility(DEPTH_BUFFER); }
+  const char* GetVisibilityAsString();
+  ///@}
+
+  ///@{
+  /// Add the point-data array "VisibleTriangle" (per-pixel id of the drawn triangle; see the class
+  /// comment) to the output. Default off.
+  vtkSetMacro(OutputVisibleTriangle, bool);
+  vtkGetMacro(OutputVisibleTriangle, bool);
+  vtkBooleanMacro(OutputVisibleTriangle, bool);
+  ///@}
+
   ///@{
   /// Statistics of the last execution: triangles sent to the rasteriser, and triangles skipped
   /// because their cell was not visible.
@@ -112,6 +158,8 @@ protected:
   double BackgroundColor[4] = { 0.0, 0.0, 0.0, 1.0 };
   int ImageSize[2] = { 0, 0 };
   bool RepeatTextures = false;
+  int Visibility = PAINTER;
+  bool OutputVisibleTriangle = false;
   int LastSize[2] = { 0, 0 };
   vtkIdType NumberOfDrawnTriangles = 0;
   vtkIdType NumberOfSkippedTriangles = 0;

@@ -4,25 +4,74 @@
 #include "SphereProjection.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkImageReader2.h"
+#include "vtkImageReader2Factory.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+namespace
+{
+// Width of the panorama generated from the room when PANORAMA mode has no file.
+constexpr int kGeneratedPanoramaWidth = 2048;
+
+// An 8-bit value of component `c` of tuple `t` of a non-unsigned-char array: integers scaled by
+// their type's range, floating point (linear radiance) tone-mapped with c / (1 + c), gamma 2.2.
+std::uint8_t ToByte(vtkDataArray* array, vtkIdType t, int c, bool floating, double scale)
+{
+  double v = array->GetComponent(t, c);
+  if (!std::isfinite(v))
+  {
+    v = 0.0;
+  }
+  if (floating)
+  {
+    v = std::max(0.0, v);
+    v = std::pow(v / (1.0 + v), 1.0 / 2.2);
+  }
+  else
+  {
+    v *= scale;
+  }
+  return static_cast<std::uint8_t>(std::lround(255.0 * std::min(1.0, std::max(0.0, v))));
+}
+} // namespace
+
+// What PANORAMA mode draws: the panorama and what it was made from.
+struct vtkCatadioptricEnvironmentSource::PanoramaCache
+{
+  catar::EquirectangularPanorama Panorama;
+  bool Valid = false;
+  std::string FileName; // "" for the generated one
+  std::filesystem::file_time_type FileTime{};
+  std::array<double, 10> RoomKey{}; // room corners, tile, viewpoint (generated panorama)
+};
 
 vtkStandardNewMacro(vtkCatadioptricEnvironmentSource);
 
 vtkCatadioptricEnvironmentSource::vtkCatadioptricEnvironmentSource()
+  : Cache(new PanoramaCache)
 {
   this->SetNumberOfInputPorts(0);
 }
 
-vtkCatadioptricEnvironmentSource::~vtkCatadioptricEnvironmentSource() = default;
+vtkCatadioptricEnvironmentSource::~vtkCatadioptricEnvironmentSource()
+{
+  this->SetPanoramaFileName(nullptr);
+}
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricEnvironmentSource);
 
@@ -54,13 +103,18 @@ int vtkCatadioptricEnvironmentSource::RequestData(
     vtkErrorMacro("Invalid camera: " << camera->GetLastError());
     return 0;
   }
-  for (int k = 0; k < 3; ++k)
+  const bool usesRoom = this->Mode == ROOM || !this->PanoramaFileName || !*this->PanoramaFileName;
+  for (int k = 0; k < 3 && usesRoom; ++k)
   {
     if (!(this->RoomMinimum[k] < this->RoomMaximum[k]))
     {
       vtkErrorMacro("RoomMinimum must be below RoomMaximum on every axis.");
       return 0;
     }
+  }
+  if (this->Mode == PANORAMA && !this->UpdatePanorama(camera))
+  {
+    return 0;
   }
   const int width = camera->GetImageWidth();
   const int height = camera->GetImageHeight();
@@ -78,17 +132,155 @@ int vtkCatadioptricEnvironmentSource::RequestData(
   room.minCorner = catar::Vec3(this->RoomMinimum[0], this->RoomMinimum[1], this->RoomMinimum[2]);
   room.maxCorner = catar::Vec3(this->RoomMaximum[0], this->RoomMaximum[1], this->RoomMaximum[2]);
   room.floorTile = this->FloorTileSize;
+  catar::PanoramaPlacement placement;
+  if (this->Mode == PANORAMA)
+  {
+    placement.rotation = this->PanoramaRotation;
+    placement.backdrop =
+      catar::Vec3(this->BackdropColor[0], this->BackdropColor[1], this->BackdropColor[2]);
+  }
   catar::ImageView view;
   view.width = width;
   view.height = height;
   view.rowStride = -4 * static_cast<std::ptrdiff_t>(width);
   view.data = scalars->GetPointer(0) + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1);
   const int samples = this->Samples;
+  const bool panorama = this->Mode == PANORAMA;
+  const catar::EquirectangularPanorama& image = this->Cache->Panorama;
   vtkSMPTools::For(0, height, 8, [&](vtkIdType y0, vtkIdType y1) {
-    catar::RenderEnvironmentRows(
-      projector, room, samples, view, static_cast<int>(y0), static_cast<int>(y1));
+    if (panorama)
+    {
+      catar::RenderPanoramaRows(
+        projector, image, placement, samples, view, static_cast<int>(y0), static_cast<int>(y1));
+    }
+    else
+    {
+      catar::RenderEnvironmentRows(
+        projector, room, samples, view, static_cast<int>(y0), static_cast<int>(y1));
+    }
   });
   return 1;
+}
+
+bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* camera)
+{
+  PanoramaCache& cache = *this->Cache;
+  const std::string name = this->PanoramaFileName ? this->PanoramaFileName : "";
+  if (name.empty())
+  {
+    // The room seen from the mirror centre.
+    const catar::CameraModel model = camera->GetModel();
+    const catar::Vec3 viewpoint = model.CameraToWorld(model.mirror.center);
+    const std::array<double, 10> key = { this->RoomMinimum[0], this->RoomMinimum[1],
+      this->RoomMinimum[2], this->RoomMaximum[0], this->RoomMaximum[1], this->RoomMaximum[2],
+      this->FloorTileSize, viewpoint.x(), viewpoint.y(), viewpoint.z() };
+    if (!cache.Valid || !cache.FileName.empty() || cache.RoomKey != key)
+    {
+      catar::RoomEnvironment room;
+      room.minCorner = catar::Vec3(key[0], key[1], key[2]);
+      room.maxCorner = catar::Vec3(key[3], key[4], key[5]);
+      room.floorTile = key[6];
+      catar::EquirectangularPanorama& pano = cache.Panorama;
+      pano.width = kGeneratedPanoramaWidth;
+      pano.height = kGeneratedPanoramaWidth / 2;
+      pano.channels = 3;
+      pano.pixels.resize(static_cast<std::size_t>(pano.width) * pano.height * pano.channels);
+      vtkSMPTools::For(0, pano.height, [&](vtkIdType j0, vtkIdType j1) {
+        catar::RenderRoomPanoramaRows(
+          room, viewpoint, pano, static_cast<int>(j0), static_cast<int>(j1));
+      });
+      cache.FileName.clear();
+      cache.RoomKey = key;
+      cache.Valid = true;
+    }
+    return true;
+  }
+
+  std::error_code ec;
+  const std::filesystem::file_time_type time = std::filesystem::last_write_time(name, ec);
+  if (ec)
+  {
+    cache.Valid = false;
+    vtkErrorMacro("PanoramaFileName: cannot read '" << name << "': " << ec.message());
+    return false;
+  }
+  if (cache.Valid && cache.FileName == name && cache.FileTime == time)
+  {
+    return true;
+  }
+  cache.Valid = false;
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(name.c_str()));
+  if (!reader)
+  {
+    vtkErrorMacro("PanoramaFileName: '" << name << "' is not an image file VTK can read");
+    return false;
+  }
+  reader->SetFileName(name.c_str());
+  reader->Update();
+  vtkImageData* input = reader->GetOutput();
+  vtkDataArray* scalars = input ? input->GetPointData()->GetScalars() : nullptr;
+  int dims[3] = { 0, 0, 0 };
+  if (input)
+  {
+    input->GetDimensions(dims);
+  }
+  const int components = scalars ? scalars->GetNumberOfComponents() : 0;
+  if (reader->GetErrorCode() != 0 || !scalars || dims[0] < 1 || dims[1] < 1 ||
+    scalars->GetNumberOfTuples() < static_cast<vtkIdType>(dims[0]) * dims[1] || components < 1 ||
+    components > 4)
+  {
+    vtkErrorMacro("PanoramaFileName: cannot read '" << name << "' (" << dims[0] << "x" << dims[1]
+                                                    << " pixels, " << components << " components)");
+    return false;
+  }
+  if (dims[0] != 2 * dims[1])
+  {
+    vtkWarningMacro("PanoramaFileName: '" << name << "' is " << dims[0] << "x" << dims[1]
+                                          << ", not 2:1; it is stretched to the whole sphere");
+  }
+
+  // Core layout: rows from the top, RGB (grey and RGB inputs) or RGBA (with alpha).
+  catar::EquirectangularPanorama& pano = cache.Panorama;
+  pano.width = dims[0];
+  pano.height = dims[1];
+  pano.channels = (components == 2 || components == 4) ? 4 : 3;
+  pano.pixels.assign(static_cast<std::size_t>(pano.width) * pano.height * pano.channels, 0);
+  const bool grey = components < 3;
+  const bool alpha = pano.channels == 4;
+  vtkUnsignedCharArray* bytes = vtkUnsignedCharArray::SafeDownCast(scalars);
+  const int type = scalars->GetDataType();
+  const bool floating = type == VTK_FLOAT || type == VTK_DOUBLE;
+  const double range = scalars->GetDataTypeMax();
+  const double scale = floating || !(range > 0.0) ? 1.0 : 1.0 / range;
+  vtkSMPTools::For(0, pano.height, [&](vtkIdType j0, vtkIdType j1) {
+    for (vtkIdType j = j0; j < j1; ++j)
+    {
+      const vtkIdType row = static_cast<vtkIdType>(pano.height - 1 - j) * pano.width; // VTK row
+      for (int i = 0; i < pano.width; ++i)
+      {
+        const vtkIdType t = row + i;
+        std::uint8_t c[4];
+        for (int k = 0; k < components && k < 4; ++k)
+        {
+          c[k] =
+            bytes ? bytes->GetValue(t * components + k) : ToByte(scalars, t, k, floating, scale);
+        }
+        std::uint8_t* out = pano.texel(i, static_cast<int>(j));
+        out[0] = c[0];
+        out[1] = grey ? c[0] : c[1];
+        out[2] = grey ? c[0] : c[2];
+        if (alpha)
+        {
+          out[3] = c[components - 1];
+        }
+      }
+    }
+  });
+  cache.FileName = name;
+  cache.FileTime = time;
+  cache.Valid = true;
+  return true;
 }
 
 void vtkCatadioptricEnvironmentSource::PrintSelf(ostream& os, vtkIndent indent)
@@ -103,4 +295,12 @@ void vtkCatadioptricEnvironmentSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RoomMaximum: " << this->RoomMaximum[0] << ", " << this->RoomMaximum[1] << ", "
      << this->RoomMaximum[2] << "\n";
   os << indent << "FloorTileSize: " << this->FloorTileSize << "\n";
+  os << indent << "Mode: " << (this->Mode == PANORAMA ? "PANORAMA" : "ROOM") << "\n";
+  os << indent << "PanoramaFileName: "
+     << (this->PanoramaFileName && *this->PanoramaFileName ? this->PanoramaFileName
+                                                           : "(none: the room)")
+     << "\n";
+  os << indent << "PanoramaRotation: " << this->PanoramaRotation << "\n";
+  os << indent << "BackdropColor: " << this->BackdropColor[0] << ", " << this->BackdropColor[1]
+     << ", " << this->BackdropColor[2] << "\n";
 }

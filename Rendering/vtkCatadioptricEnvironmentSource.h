@@ -1,12 +1,19 @@
 /**
  * @class   vtkCatadioptricEnvironmentSource
- * @brief   synthesises a camera frame: a procedural room seen in (and around) the mirror
+ * @brief   synthesises a camera frame: a procedural room or a panorama seen in the mirror
  *
- * Every pixel is back-projected through the camera: where it sees the mirror, the reflected ray
- * picks up the colour of a procedural room (checkered floor, tiled walls, a window, a door, a lit
- * ceiling); elsewhere the camera sees the room directly. The room is an axis-aligned box in world
- * coordinates (z up). Output: RGBA unsigned char vtkImageData of the camera's image size, in VTK
- * row order. Rows are computed in parallel with vtkSMPTools.
+ * Every pixel is back-projected through the camera. Two modes:
+ * - ROOM (default): where a pixel sees the mirror, the reflected ray picks up the colour of a
+ *   procedural room (checkered floor, tiled walls, a window, a door, a lit ceiling); elsewhere the
+ *   camera sees the room directly. The room is an axis-aligned box in world coordinates (z up).
+ * - PANORAMA: the mirror reflects an equirectangular panorama at infinity (PanoramaFileName, a
+ *   PNG/JPEG/... image of a real place; without a file, the procedural room rendered into a
+ *   panorama from the mirror centre); pixels that do not see the mirror get BackdropColor.
+ *   Panorama layout (world z up): the top row is the zenith, the image's middle column looks
+ *   along +x, and longitude grows towards +y to the LEFT (column
+ *   x = (0.5 - lon / 360 deg) * width - 0.5); PanoramaRotation turns it about +z.
+ * Output: RGBA unsigned char vtkImageData of the camera's image size, in VTK row order. Rows are
+ * computed in parallel with vtkSMPTools.
  *
  * The camera comes from SetCamera(), or, when none is set, from CalibrationFileName.
  */
@@ -16,6 +23,8 @@
 #include "CatadioptricARRenderingModule.h" // for export macro
 #include "vtkCatadioptricCameraSlot.h"     // for member
 #include "vtkImageAlgorithm.h"
+
+#include <memory> // for std::unique_ptr
 
 class vtkCatadioptricCamera;
 
@@ -54,6 +63,47 @@ public:
   vtkGetMacro(FloorTileSize, double);
   ///@}
 
+  /// What the frame shows.
+  enum Modes
+  {
+    ROOM = 0,    ///< the procedural room, in and around the mirror (default)
+    PANORAMA = 1 ///< a panorama at infinity in the mirror, BackdropColor around it
+  };
+
+  ///@{
+  /// ROOM (default) or PANORAMA.
+  vtkSetClampMacro(Mode, int, ROOM, PANORAMA);
+  vtkGetMacro(Mode, int);
+  void SetModeToRoom() { this->SetMode(ROOM); }
+  void SetModeToPanorama() { this->SetMode(PANORAMA); }
+  ///@}
+
+  ///@{
+  /// PANORAMA mode: an equirectangular image file (any format vtkImageReader2Factory reads: PNG,
+  /// JPEG, TIFF, BMP, ...; grey, RGB or RGBA, 8 or 16 bits; float images such as Radiance .hdr
+  /// are tone-mapped with c / (1 + c) and gamma 2.2). It is read once and kept until the name or
+  /// the file's modification time changes (after rewriting the file under the same name, call
+  /// Modified() so that the pipeline updates). A missing or unreadable file is an error (the
+  /// update fails, nothing crashes). Null or "" (default): the room of RoomMinimum /
+  /// RoomMaximum / FloorTileSize rendered into a 2048x1024 panorama from the mirror centre.
+  vtkSetStringMacro(PanoramaFileName);
+  vtkGetStringMacro(PanoramaFileName);
+  ///@}
+
+  ///@{
+  /// PANORAMA mode: rotation of the panorama about the world +z axis, degrees (its middle column
+  /// then looks along longitude PanoramaRotation, counter-clockwise from +x). Default 0.
+  vtkSetMacro(PanoramaRotation, double);
+  vtkGetMacro(PanoramaRotation, double);
+  ///@}
+
+  ///@{
+  /// PANORAMA mode: colour (RGB in [0,1]) of the pixels that do not see the mirror. Default mid
+  /// grey (0.5, 0.5, 0.5).
+  vtkSetVector3Macro(BackdropColor, double);
+  vtkGetVector3Macro(BackdropColor, double);
+  ///@}
+
   /// The modification time includes the camera's.
   vtkMTimeType GetMTime() override;
 
@@ -64,14 +114,24 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   vtkCatadioptricCamera* ResolveCamera();
+  /// Brings the cached panorama of PANORAMA mode up to date (read or generated); false after an
+  /// error (reported).
+  bool UpdatePanorama(vtkCatadioptricCamera* camera);
 
   vtkCatadioptricCameraSlot CameraSlot;
   int Samples = 2;
   double RoomMinimum[3] = { -2.0, -2.0, 0.0 };
   double RoomMaximum[3] = { 2.0, 2.0, 2.6 };
   double FloorTileSize = 0.25;
+  int Mode = ROOM;
+  char* PanoramaFileName = nullptr;
+  double PanoramaRotation = 0.0;
+  double BackdropColor[3] = { 0.5, 0.5, 0.5 };
 
 private:
+  struct PanoramaCache;
+  std::unique_ptr<PanoramaCache> Cache;
+
   vtkCatadioptricEnvironmentSource(const vtkCatadioptricEnvironmentSource&) = delete;
   void operator=(const vtkCatadioptricEnvironmentSource&) = delete;
 };

@@ -171,6 +171,10 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     return false;
   }
   in.Compositor->RemoveAllTextureConnections();
+  // Scene key `visibility`: painter order (default) or a depth buffer on the path length.
+  in.Compositor->SetVisibility(scene.visibility == "depth"
+      ? vtkCatadioptricCompositor::DEPTH_BUFFER
+      : vtkCatadioptricCompositor::PAINTER);
   int textures = 0;
   for (size_t i = 0; i < meshes.size(); ++i)
   {
@@ -246,11 +250,24 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   in.Compositor->SetFrameConnection(nullptr);
   in.Compositor->SetImageSize(0, 0);
   const catar::SceneBackground& bg = scene.background;
-  if (bg.type == "environment")
+  if (bg.type == "environment" || bg.type == "panorama")
   {
     auto env = vtkSmartPointer<vtkCatadioptricEnvironmentSource>::New();
     env->SetCamera(in.Camera);
     env->SetSamples(bg.samples);
+    if (bg.type == "panorama")
+    {
+      if (!bg.panorama.empty() && !vtksys::SystemTools::FileExists(bg.panorama, true))
+      {
+        in.Error = "background: 'file' cannot be read: " + bg.panorama;
+        vtkErrorMacro(<< in.Error);
+        return false;
+      }
+      env->SetModeToPanorama();
+      env->SetPanoramaFileName(bg.panorama.empty() ? nullptr : bg.panorama.c_str());
+      env->SetPanoramaRotation(bg.rotation);
+      env->SetBackdropColor(bg.backdrop.x(), bg.backdrop.y(), bg.backdrop.z());
+    }
     in.Background = env;
   }
   else if (bg.type == "image")

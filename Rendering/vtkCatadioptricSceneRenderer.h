@@ -6,7 +6,8 @@
  * VTK's readers, or procedural boxes, spheres, tori, cylinders, planes), and runs, for every
  * frame, projection -> lighting (when the scene is lit; every object casts shadows on the others)
  * -> painter sort -> compositing onto the background (a synthesised room, a colour, or an image
- * file). Meshes are prepared once; Render() can be called again after the
+ * file). The scene key `visibility` sets the compositor's Visibility (painter order or a depth
+ * buffer). Meshes are prepared once; Render() can be called again after the
  * camera pose changes, and then redoes only the per-frame stages.
  *
  * The wall-clock time of each stage of the last Render() is kept (GetStageName / GetStageTime).

@@ -1,6 +1,8 @@
 // Per-frame cost of the demo scene with the STDThread SMP backend: each iteration moves nothing but
 // marks the camera modified, so the background frame is synthesised again (background_ms) and
-// projection, lighting, painter sort and compositing run again (per_frame_ms, the AR path). Run:
+// projection, lighting, painter sort and compositing run again (per_frame_ms, the AR path). The
+// compositor runs in painter order (/0, the paper's method) and with the depth buffer (/1, the
+// scene key `visibility: depth`); composite_ms compares the two. Run:
 //   build/bin/BenchmarkFrame [--benchmark_out=frame.csv --benchmark_out_format=csv]
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricSceneRenderer.h"
@@ -9,6 +11,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -17,8 +22,30 @@ namespace
 void BM_DemoFrame(benchmark::State& state)
 {
   vtkSMPTools::SetBackend("STDThread");
+  const bool depth = state.range(0) != 0;
+  state.SetLabel(depth ? "depth buffer" : "painter");
   vtkNew<vtkCatadioptricSceneRenderer> renderer;
-  if (!renderer->Render())
+  // The demo scene, with `visibility: depth` appended for the depth-buffer run.
+  std::string sceneFile;
+  if (depth)
+  {
+    sceneFile =
+      (std::filesystem::temp_directory_path() / "catar_benchmark_frame_depth.yaml").string();
+    std::ofstream out(sceneFile);
+    out << vtkCatadioptricSceneRenderer::GetDemoSceneText() << "visibility: depth\n";
+    if (!out)
+    {
+      state.SkipWithError("cannot write the depth-buffer scene file");
+      return;
+    }
+    renderer->SetSceneFileName(sceneFile.c_str());
+  }
+  const bool loaded = renderer->Render();
+  if (!sceneFile.empty())
+  {
+    std::remove(sceneFile.c_str()); // read by LoadScene, no longer needed
+  }
+  if (!loaded)
   {
     state.SkipWithError(renderer->GetLastError());
     return;
@@ -46,7 +73,7 @@ void BM_DemoFrame(benchmark::State& state)
   state.counters["per_frame_ms"] = 1e3 * perFrame;
   state.counters["ar_fps"] = perFrame > 0 ? 1.0 / perFrame : 0.0;
 }
-BENCHMARK(BM_DemoFrame)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DemoFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 } // namespace
 
 BENCHMARK_MAIN();

@@ -1,0 +1,325 @@
+// catadioptric-compare: accuracy metrics between two renderings of the same scene (e.g. the
+// rasterised frame against the ray-traced reference), see README "Accuracy metrics".
+//
+//   catadioptric-compare A.png B.png [--background R,G,B[,A]] [--background-image BG.png]
+//                        [--tolerance T] [--silhouette-psnr] [--csv FILE] [--diff FILE]
+//
+// Exit status: 0 on success, 2 on a usage error, 1 when an image cannot be read or the two images
+// cannot be compared (different sizes).
+#include "ImageMetrics.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+void Usage(FILE* out)
+{
+  std::fprintf(out,
+    "usage: catadioptric-compare A.png B.png [--background R,G,B[,A]] [--background-image BG.png]\n"
+    "                            [--tolerance T] [--silhouette-psnr] [--csv FILE] [--diff FILE]\n"
+    "\n"
+    "Compares two renderings of the same scene and prints one metric per line (name value):\n"
+    "silhouette IoU, mean and max (Hausdorff) boundary distance in pixels, PSNR of RGB in dB and\n"
+    "SSIM of the luminance (see README \"Accuracy metrics\"). A pixel is part of the object when\n"
+    "it differs from the background (--background, default 0,0,0,255, or the pixel of\n"
+    "--background-image) by more than T levels (default 0) in some channel of RGBA.\n"
+    "--silhouette-psnr computes the PSNR over the union of the silhouettes only. --csv FILE\n"
+    "writes a header and one row; --diff FILE writes |A - B| x 4 as a PNG.\n"
+    "Exit status: 0 success, 1 unreadable or incomparable images, 2 usage error.\n");
+}
+
+// Reads an 8- or 16-bit grey, BGR or BGRA image and converts it to RGBA8.
+bool ReadRgba(const std::string& path, cv::Mat& rgba, std::string& error)
+{
+  cv::Mat image;
+  try
+  {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "cannot read image '" + path + "': " + e.what();
+    return false;
+  }
+  if (image.empty())
+  {
+    error = "cannot read image '" + path + "' (missing or not an image)";
+    return false;
+  }
+  if (image.depth() == CV_16U)
+  {
+    image.convertTo(image, CV_8U, 1.0 / 257.0);
+  }
+  else if (image.depth() != CV_8U)
+  {
+    error = "image '" + path + "' has an unsupported depth (8- or 16-bit expected)";
+    return false;
+  }
+  switch (image.channels())
+  {
+    case 1:
+      cv::cvtColor(image, rgba, cv::COLOR_GRAY2RGBA);
+      break;
+    case 3:
+      cv::cvtColor(image, rgba, cv::COLOR_BGR2RGBA);
+      break;
+    case 4:
+      cv::cvtColor(image, rgba, cv::COLOR_BGRA2RGBA);
+      break;
+    default:
+      error = "image '" + path + "' has " + std::to_string(image.channels()) +
+        " channels (1, 3 or 4 expected)";
+      return false;
+  }
+  return true;
+}
+
+catar::ConstImageView View(const cv::Mat& rgba)
+{
+  return catar::ConstImageView{ rgba.ptr<std::uint8_t>(0), rgba.cols, rgba.rows,
+    static_cast<std::ptrdiff_t>(rgba.step[0]) };
+}
+
+// Parses "R,G,B" or "R,G,B,A" (each 0..255).
+bool ParseColour(const std::string& text, std::array<std::uint8_t, 4>& colour)
+{
+  std::vector<long> values;
+  const char* p = text.c_str();
+  for (;;)
+  {
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(p, &end, 10);
+    if (end == p || errno != 0 || v < 0 || v > 255)
+    {
+      return false;
+    }
+    values.push_back(v);
+    if (*end == '\0')
+    {
+      break;
+    }
+    if (*end != ',')
+    {
+      return false;
+    }
+    p = end + 1;
+  }
+  if (values.size() != 3 && values.size() != 4)
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < 4; ++i)
+  {
+    colour[i] = static_cast<std::uint8_t>(i < values.size() ? values[i] : 255);
+  }
+  return true;
+}
+
+std::string Number(double v)
+{
+  if (std::isinf(v))
+  {
+    return v > 0 ? "inf" : "-inf";
+  }
+  if (std::isnan(v))
+  {
+    return "nan";
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.10g", v);
+  return buffer;
+}
+
+std::string CsvField(const std::string& s)
+{
+  if (s.find_first_of(",\"\n") == std::string::npos)
+  {
+    return s;
+  }
+  std::string quoted = "\"";
+  for (char c : s)
+  {
+    quoted += c;
+    if (c == '"')
+    {
+      quoted += '"';
+    }
+  }
+  return quoted + "\"";
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::vector<std::string> inputs;
+  catar::CompareOptions options;
+  std::string backgroundImageName;
+  std::string csvName;
+  std::string diffName;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "-h" || arg == "--help")
+    {
+      Usage(stdout);
+      return 0;
+    }
+    if (arg == "--background" && hasValue)
+    {
+      if (!ParseColour(argv[++i], options.background))
+      {
+        std::fprintf(
+          stderr, "catadioptric-compare: --background needs R,G,B or R,G,B,A (0..255)\n");
+        return 2;
+      }
+    }
+    else if (arg == "--background-image" && hasValue)
+    {
+      backgroundImageName = argv[++i];
+    }
+    else if (arg == "--tolerance" && hasValue)
+    {
+      char* end = nullptr;
+      errno = 0;
+      const long t = std::strtol(argv[++i], &end, 10);
+      if (!end || *end != '\0' || end == argv[i] || errno != 0 || t < 0 || t > 255)
+      {
+        std::fprintf(stderr, "catadioptric-compare: --tolerance needs an integer in 0..255\n");
+        return 2;
+      }
+      options.colorTolerance = static_cast<int>(t);
+    }
+    else if (arg == "--silhouette-psnr")
+    {
+      options.psnrOverSilhouette = true;
+    }
+    else if (arg == "--csv" && hasValue)
+    {
+      csvName = argv[++i];
+    }
+    else if (arg == "--diff" && hasValue)
+    {
+      diffName = argv[++i];
+    }
+    else if (!arg.empty() && arg[0] == '-' && arg != "-")
+    {
+      std::fprintf(
+        stderr, "catadioptric-compare: unknown or incomplete option '%s'\n\n", arg.c_str());
+      Usage(stderr);
+      return 2;
+    }
+    else
+    {
+      inputs.push_back(arg);
+    }
+  }
+  if (inputs.size() != 2)
+  {
+    std::fprintf(stderr, "catadioptric-compare: two images expected, %zu given\n\n", inputs.size());
+    Usage(stderr);
+    return 2;
+  }
+
+  cv::Mat a, b, background;
+  std::string error;
+  if (!ReadRgba(inputs[0], a, error) || !ReadRgba(inputs[1], b, error) ||
+    (!backgroundImageName.empty() && !ReadRgba(backgroundImageName, background, error)))
+  {
+    std::fprintf(stderr, "catadioptric-compare: %s\n", error.c_str());
+    return 1;
+  }
+  if (!background.empty())
+  {
+    options.backgroundImage = View(background);
+  }
+  catar::ImageInput inputA;
+  inputA.color = View(a);
+  catar::ImageInput inputB;
+  inputB.color = View(b);
+  const catar::ImageComparison r = catar::CompareImages(inputA, inputB, options);
+  if (!r.ok())
+  {
+    std::fprintf(stderr, "catadioptric-compare: %s\n", r.error.c_str());
+    return 1;
+  }
+
+  const std::vector<std::pair<std::string, std::string>> rows = {
+    { "pixels", std::to_string(r.pixels) },
+    { "silhouette_pixels_a", std::to_string(r.silhouettePixelsA) },
+    { "silhouette_pixels_b", std::to_string(r.silhouettePixelsB) },
+    { "iou", Number(r.silhouetteIoU) },
+    { "mean_boundary_distance", Number(r.meanBoundaryDistance) },
+    { "max_boundary_distance", Number(r.maxBoundaryDistance) },
+    { "psnr", Number(r.psnr) },
+    { "psnr_pixels", std::to_string(r.psnrPixels) },
+    { "ssim", Number(r.ssim) },
+  };
+  for (const auto& row : rows)
+  {
+    std::printf("%s %s\n", row.first.c_str(), row.second.c_str());
+  }
+
+  if (!csvName.empty())
+  {
+    std::ofstream csv(csvName);
+    csv << "a,b";
+    for (const auto& row : rows)
+    {
+      csv << ',' << row.first;
+    }
+    csv << '\n' << CsvField(inputs[0]) << ',' << CsvField(inputs[1]);
+    for (const auto& row : rows)
+    {
+      csv << ',' << row.second;
+    }
+    csv << '\n';
+    if (!csv)
+    {
+      std::fprintf(stderr, "catadioptric-compare: cannot write '%s'\n", csvName.c_str());
+      return 1;
+    }
+  }
+
+  if (!diffName.empty())
+  {
+    cv::Mat diff(a.rows, a.cols, CV_8UC4);
+    const std::string diffError = catar::DifferenceImage(View(a), View(b),
+      catar::ImageView{ diff.ptr<std::uint8_t>(0), diff.cols, diff.rows,
+        static_cast<std::ptrdiff_t>(diff.step[0]) });
+    bool written = diffError.empty();
+    if (written)
+    {
+      cv::cvtColor(diff, diff, cv::COLOR_RGBA2BGRA);
+      try
+      {
+        written = cv::imwrite(diffName, diff);
+      }
+      catch (const cv::Exception&)
+      {
+        written = false;
+      }
+    }
+    if (!written)
+    {
+      std::fprintf(stderr, "catadioptric-compare: cannot write '%s'\n", diffName.c_str());
+      return 1;
+    }
+  }
+  return 0;
+}

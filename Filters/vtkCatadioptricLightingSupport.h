@@ -1,0 +1,37 @@
+/**
+ * @class   vtkCatadioptricLightingSupport
+ * @brief   conversions shared by the lighting filter and the reference ray tracer
+ *
+ * Not a vtkObject (C++ only, not wrapped): vtkLights to Core light sources, a vtkProperty to a
+ * Core material, and area-weighted vertex normals, so that the fast path and the exact reference
+ * light a scene from the very same parameters.
+ */
+#ifndef vtkCatadioptricLightingSupport_h
+#define vtkCatadioptricLightingSupport_h
+
+#include "CatadioptricARFiltersModule.h" // for export macro
+#include "Lighting.h"                    // for catar::LightSource, catar::Material
+
+#include <vector> // for std::vector
+
+class vtkLightCollection;
+class vtkPolyData;
+class vtkProperty;
+
+class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricLightingSupport
+{
+public:
+  /// The lights that are switched on: not positional = directional; positional with
+  /// ConeAngle < 90 = spotlight; otherwise a point light. Colours times Intensity.
+  static std::vector<catar::LightSource> ConvertLights(vtkLightCollection* lights);
+
+  /// Ka = Ambient * AmbientColor, Kd = Diffuse * DiffuseColor, Ks = Specular * SpecularColor,
+  /// shininess = SpecularPower, and the given emission.
+  static catar::Material ConvertProperty(vtkProperty* property, const double emission[3]);
+
+  /// Area-weighted vertex normals (Newell normals of the polygons summed at their vertices),
+  /// unit length; (0, 0, 1) where a point has no polygon.
+  static std::vector<catar::Vec3> VertexNormals(vtkPolyData* mesh);
+};
+
+#endif

@@ -1,0 +1,570 @@
+#include "vtkCatadioptricRayTracer.h"
+
+#include "RayTracer.h"
+#include "SphereProjection.h"
+
+#include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricColorArray.h"
+#include "vtkCatadioptricLighting.h"
+#include "vtkCatadioptricLightingSupport.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkCatadioptricRayTracer);
+
+// The camera slot by hand (not vtkCatadioptricCameraSlotMacro): GetMTime also includes the
+// lighting filters'.
+void vtkCatadioptricRayTracer::SetCamera(vtkCatadioptricCamera* camera)
+{
+  if (this->CameraSlot.SetCamera(camera))
+  {
+    this->Modified();
+  }
+}
+
+vtkCatadioptricCamera* vtkCatadioptricRayTracer::GetCamera()
+{
+  return this->CameraSlot.GetCamera();
+}
+
+void vtkCatadioptricRayTracer::SetCalibrationFileName(const char* fileName)
+{
+  if (this->CameraSlot.SetCalibrationFileName(fileName))
+  {
+    this->Modified();
+  }
+}
+
+const char* vtkCatadioptricRayTracer::GetCalibrationFileName()
+{
+  return this->CameraSlot.GetCalibrationFileName();
+}
+
+vtkCatadioptricCamera* vtkCatadioptricRayTracer::ResolveCamera()
+{
+  std::string error;
+  vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error);
+  if (!camera)
+  {
+    vtkErrorMacro(<< error);
+  }
+  return camera;
+}
+
+struct vtkCatadioptricRayTracer::Internals
+{
+  catar::RayTracer Tracer;
+  std::vector<vtkSmartPointer<vtkCatadioptricLighting>> Lightings;
+  // The rays are kept while the camera and the sample count are unchanged.
+  vtkMTimeType RaysCameraTime = 0;
+  vtkCatadioptricCamera* RaysCamera = nullptr;
+  int RaysSamples = 0;
+};
+
+namespace
+{
+catar::Vec3 V3(const double v[3])
+{
+  return catar::Vec3(v[0], v[1], v[2]);
+}
+
+// The texture coordinates of a mesh, as the compositor finds them.
+vtkDataArray* TextureCoordinates(vtkPolyData* mesh)
+{
+  vtkDataArray* t = mesh->GetPointData()->GetTCoords();
+  for (const char* name : { "TCoords", "TextureCoordinates" })
+  {
+    if (!t)
+    {
+      t = mesh->GetPointData()->GetArray(name);
+    }
+  }
+  return t && t->GetNumberOfComponents() == 2 ? t : nullptr;
+}
+} // namespace
+
+vtkCatadioptricRayTracer::vtkCatadioptricRayTracer()
+  : Internal(new Internals)
+{
+  this->SetNumberOfInputPorts(3);
+  this->SetColorArrayName("Colors");
+}
+
+vtkCatadioptricRayTracer::~vtkCatadioptricRayTracer()
+{
+  this->SetColorArrayName(nullptr);
+}
+
+void vtkCatadioptricRayTracer::SetMeshLighting(int index, vtkCatadioptricLighting* lighting)
+{
+  if (index < 0)
+  {
+    vtkErrorMacro("Negative mesh index " << index << ".");
+    return;
+  }
+  auto& l = this->Internal->Lightings;
+  if (static_cast<std::size_t>(index) >= l.size())
+  {
+    l.resize(index + 1);
+  }
+  if (l[index] != lighting)
+  {
+    l[index] = lighting;
+    this->Modified();
+  }
+}
+
+vtkCatadioptricLighting* vtkCatadioptricRayTracer::GetMeshLighting(int index)
+{
+  const auto& l = this->Internal->Lightings;
+  return index >= 0 && static_cast<std::size_t>(index) < l.size() ? l[index].Get() : nullptr;
+}
+
+void vtkCatadioptricRayTracer::RemoveAllMeshLightings()
+{
+  if (!this->Internal->Lightings.empty())
+  {
+    this->Internal->Lightings.clear();
+    this->Modified();
+  }
+}
+
+vtkMTimeType vtkCatadioptricRayTracer::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  t = std::max(t, this->CameraSlot.GetCameraMTime());
+  for (const auto& l : this->Internal->Lightings)
+  {
+    if (l)
+    {
+      t = std::max(t, l->GetMTime());
+    }
+  }
+  return t;
+}
+
+int vtkCatadioptricRayTracer::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 1 ? "vtkPolyData" : "vtkImageData");
+  if (port != 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  }
+  return 1;
+}
+
+int vtkCatadioptricRayTracer::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int extent[6] = { 0, 0, 0, 0, 0, 0 };
+  vtkInformation* frameInfo = inputVector[0]->GetInformationObject(0);
+  if (frameInfo && frameInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    frameInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  }
+  else if (this->ImageSize[0] > 0 && this->ImageSize[1] > 0)
+  {
+    extent[1] = this->ImageSize[0] - 1;
+    extent[3] = this->ImageSize[1] - 1;
+  }
+  else if (std::string ignored; vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(ignored))
+  {
+    // RequestData reports a missing camera.
+    extent[1] = std::max(1, camera->GetImageWidth()) - 1;
+    extent[3] = std::max(1, camera->GetImageHeight()) - 1;
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  return 1;
+}
+
+int vtkCatadioptricRayTracer::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  for (int port : { 0, 2 })
+  {
+    for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
+    {
+      vtkInformation* info = inputVector[port]->GetInformationObject(i);
+      if (info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+      {
+        int extent[6];
+        info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+        info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+      }
+    }
+  }
+  return 1;
+}
+
+int vtkCatadioptricRayTracer::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->NumberOfMirrorRays = this->NumberOfTracedRays = 0;
+  this->NumberOfHits = this->NumberOfShadowRays = 0;
+  vtkCatadioptricCamera* camera = this->ResolveCamera();
+  if (!camera)
+  {
+    return 0;
+  }
+  const catar::CameraModel model = camera->GetModel();
+  const catar::SphereProjector projector(model);
+  if (!projector.IsValid())
+  {
+    vtkErrorMacro("Invalid camera: " << projector.GetError());
+    return 0;
+  }
+  const int width = model.intrinsics.width;
+  const int height = model.intrinsics.height;
+
+  // Frame or background, as the compositor.
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkImageData* frame = vtkImageData::GetData(inputVector[0]);
+  int frameComponents = 0;
+  if (frame)
+  {
+    int dims[3];
+    frame->GetDimensions(dims);
+    vtkDataArray* scalars = frame->GetPointData()->GetScalars();
+    if (!scalars || scalars->GetDataType() != VTK_UNSIGNED_CHAR || dims[2] != 1 ||
+      scalars->GetNumberOfComponents() < 1 || scalars->GetNumberOfComponents() > 4)
+    {
+      vtkErrorMacro("The frame must be a 2D image of unsigned char scalars, 1 to 4 components.");
+      return 0;
+    }
+    if (dims[0] != width || dims[1] != height)
+    {
+      vtkErrorMacro("The frame is " << dims[0] << "x" << dims[1] << " but the camera image is "
+                                    << width << "x" << height << ".");
+      return 0;
+    }
+    frameComponents = scalars->GetNumberOfComponents();
+  }
+  else if (this->ImageSize[0] > 0 &&
+    (this->ImageSize[0] != width || this->ImageSize[1] != height))
+  {
+    vtkErrorMacro("ImageSize " << this->ImageSize[0] << "x" << this->ImageSize[1]
+                               << " differs from the camera image " << width << "x" << height
+                               << ".");
+    return 0;
+  }
+  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
+  output->SetOrigin(0, 0, 0);
+  output->SetSpacing(1, 1, 1);
+  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  vtkUnsignedCharArray* outScalars =
+    vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
+  outScalars->SetName("RGBA");
+  unsigned char* out = outScalars->GetPointer(0);
+  const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
+  if (frame)
+  {
+    const auto* in =
+      static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0));
+    const int nc = frameComponents;
+    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        const unsigned char* s = in + nc * i;
+        unsigned char* d = out + 4 * i;
+        d[0] = s[0];
+        d[1] = nc >= 3 ? s[1] : s[0];
+        d[2] = nc >= 3 ? s[2] : s[0];
+        d[3] = nc == 4 ? s[3] : (nc == 2 ? s[1] : 255);
+      }
+    });
+  }
+  else
+  {
+    unsigned char bg[4];
+    for (int k = 0; k < 4; ++k)
+    {
+      bg[k] = static_cast<unsigned char>(
+        std::lround(255.0 * std::min(1.0, std::max(0.0, this->BackgroundColor[k]))));
+    }
+    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        std::copy(bg, bg + 4, out + 4 * i);
+      }
+    });
+  }
+
+  // Textures.
+  std::vector<catar::TextureView> textures;
+  for (int t = 0; t < inputVector[2]->GetNumberOfInformationObjects(); ++t)
+  {
+    vtkImageData* tex = vtkImageData::GetData(inputVector[2], t);
+    vtkDataArray* texels = tex ? tex->GetPointData()->GetScalars() : nullptr;
+    int tdims[3] = { 0, 0, 0 };
+    if (tex)
+    {
+      tex->GetDimensions(tdims);
+    }
+    const int nc = texels ? texels->GetNumberOfComponents() : 0;
+    if (!texels || texels->GetDataType() != VTK_UNSIGNED_CHAR || tdims[2] != 1 || tdims[0] < 1 ||
+      tdims[1] < 1 || !(nc == 1 || nc == 3 || nc == 4))
+    {
+      vtkErrorMacro("Texture " << t << " must be a 2D unsigned char image with 1, 3 or 4 "
+                                      "components.");
+      return 0;
+    }
+    catar::TextureView view;
+    view.data = static_cast<const std::uint8_t*>(texels->GetVoidPointer(0));
+    view.width = tdims[0];
+    view.height = tdims[1];
+    view.channels = nc;
+    view.rowStride = static_cast<std::ptrdiff_t>(nc) * tdims[0];
+    view.repeat = this->RepeatTextures;
+    textures.push_back(view);
+  }
+
+  // Meshes: triangles (polygons as fans), colours, normals, texture coordinates, lighting.
+  std::vector<catar::TraceMesh> meshes;
+  std::vector<catar::LightSource> lights;
+  catar::Vec3 globalAmbient = catar::Vec3::Zero();
+  bool haveLights = false;
+  bool shadows = false;
+  const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
+  for (int m = 0; m < nMeshes; ++m)
+  {
+    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
+    catar::TraceMesh tm;
+    if (!mesh)
+    {
+      meshes.push_back(tm);
+      continue;
+    }
+    const vtkIdType nPts = mesh->GetNumberOfPoints();
+    tm.points.resize(nPts);
+    for (vtkIdType i = 0; i < nPts; ++i)
+    {
+      double p[3];
+      mesh->GetPoint(i, p);
+      tm.points[i] = V3(p);
+    }
+    vtkDataArray* original = mesh->GetCellData()->GetArray("OriginalCellId");
+    const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+    std::vector<vtkIdType> triangleCells;
+    vtkCellArray* polys = mesh->GetPolys();
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+    {
+      polys->GetCellAtId(c, ids);
+      for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
+      {
+        tm.triangles.push_back({ static_cast<std::uint32_t>(ids->GetId(0)),
+          static_cast<std::uint32_t>(ids->GetId(k)), static_cast<std::uint32_t>(ids->GetId(k + 1)) });
+        triangleCells.push_back(firstCell + c);
+        tm.triangleIds.push_back(original
+            ? static_cast<std::int64_t>(original->GetComponent(firstCell + c, 0))
+            : static_cast<std::int64_t>(firstCell + c));
+      }
+    }
+
+    vtkCatadioptricLighting* lighting = this->GetMeshLighting(m);
+    const char* colorName = lighting ? lighting->GetInputColorArrayName() : this->ColorArrayName;
+    float solid[4] = { static_cast<float>(this->Color[0]), static_cast<float>(this->Color[1]),
+      static_cast<float>(this->Color[2]), 1.0f };
+    if (lighting)
+    {
+      const double* d = lighting->GetProperty()->GetDiffuseColor();
+      for (int k = 0; k < 3; ++k)
+      {
+        solid[k] = static_cast<float>(d[k]);
+      }
+    }
+    const vtkCatadioptricColorArray colors(mesh, colorName, solid);
+    tm.color = catar::Vec3(solid[0], solid[1], solid[2]);
+    if (colors.HasArray())
+    {
+      tm.colorSource = colors.IsPerPoint() ? catar::TraceMesh::ColorSource::Point
+                                           : catar::TraceMesh::ColorSource::Cell;
+      const std::size_t n = colors.IsPerPoint() ? tm.points.size() : tm.triangles.size();
+      tm.colors.resize(4 * n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        if (colors.IsPerPoint())
+        {
+          colors.Get(static_cast<vtkIdType>(i), 0, &tm.colors[4 * i]);
+        }
+        else
+        {
+          colors.Get(0, triangleCells[i], &tm.colors[4 * i]);
+        }
+      }
+    }
+    tm.opacity = this->Opacity;
+    if (lighting && lighting->GetShadingMode() != vtkCatadioptricLighting::NONE)
+    {
+      vtkProperty* prop = lighting->GetProperty();
+      tm.shading = lighting->GetShadingMode() == vtkCatadioptricLighting::FLAT
+        ? catar::TraceMesh::Shading::Flat
+        : catar::TraceMesh::Shading::Smooth;
+      tm.material = vtkCatadioptricLightingSupport::ConvertProperty(prop, lighting->GetEmission());
+      tm.ambientFactor = prop->GetAmbient();
+      tm.diffuseFactor = prop->GetDiffuse();
+      tm.opacity *= prop->GetOpacity();
+      tm.twoSided = lighting->GetTwoSidedLighting();
+      if (tm.shading == catar::TraceMesh::Shading::Smooth)
+      {
+        vtkDataArray* normals = mesh->GetPointData()->GetNormals();
+        if (normals && normals->GetNumberOfComponents() == 3)
+        {
+          tm.normals.resize(nPts);
+          for (vtkIdType i = 0; i < nPts; ++i)
+          {
+            tm.normals[i] = V3(normals->GetTuple3(i)).normalized();
+          }
+        }
+        else
+        {
+          tm.normals = vtkCatadioptricLightingSupport::VertexNormals(mesh);
+        }
+      }
+      if (!haveLights)
+      {
+        lights = vtkCatadioptricLightingSupport::ConvertLights(lighting->GetLights());
+        globalAmbient = V3(lighting->GetGlobalAmbient());
+        haveLights = true;
+      }
+      shadows = shadows || lighting->GetShadows();
+    }
+    else
+    {
+      tm.shading = catar::TraceMesh::Shading::None;
+      if (lighting)
+      {
+        tm.opacity *= lighting->GetProperty()->GetOpacity();
+      }
+    }
+    if (!textures.empty())
+    {
+      if (vtkDataArray* tcoords = TextureCoordinates(mesh))
+      {
+        int texture = 0;
+        if (vtkDataArray* index = mesh->GetFieldData()->GetArray("TextureIndex"))
+        {
+          texture = static_cast<int>(index->GetComponent(0, 0));
+        }
+        if (texture >= static_cast<int>(textures.size()))
+        {
+          vtkErrorMacro("Mesh " << m << " asks for texture " << texture << " but "
+                                << textures.size() << " are connected.");
+          return 0;
+        }
+        if (texture >= 0)
+        {
+          tm.texture = texture;
+          tm.tcoords.resize(2 * static_cast<std::size_t>(nPts));
+          for (vtkIdType i = 0; i < nPts; ++i)
+          {
+            tm.tcoords[2 * i] = static_cast<float>(tcoords->GetComponent(i, 0));
+            tm.tcoords[2 * i + 1] = static_cast<float>(tcoords->GetComponent(i, 1));
+          }
+        }
+      }
+    }
+    meshes.push_back(std::move(tm));
+  }
+  this->UpdateProgress(0.1);
+
+  Internals& in = *this->Internal;
+  if (!in.Tracer.SetScene(meshes, textures, lights, globalAmbient, shadows))
+  {
+    vtkErrorMacro("Cannot build the scene: " << in.Tracer.GetError());
+    return 0;
+  }
+  if (in.RaysCamera != camera || in.RaysCameraTime != camera->GetMTime() ||
+    in.RaysSamples != this->Samples || in.Tracer.GetWidth() != width ||
+    in.Tracer.GetHeight() != height)
+  {
+    if (!in.Tracer.PrepareRays(projector, this->Samples))
+    {
+      vtkErrorMacro(<< in.Tracer.GetError());
+      return 0;
+    }
+    in.RaysCamera = camera;
+    in.RaysCameraTime = camera->GetMTime();
+    in.RaysSamples = this->Samples;
+  }
+  this->UpdateProgress(0.3);
+
+  // VTK rows go bottom-up: address the image from its last row with a negative stride.
+  catar::ImageView view;
+  view.width = width;
+  view.height = height;
+  view.rowStride = -4 * static_cast<std::ptrdiff_t>(width);
+  view.data = out + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1);
+  std::int64_t* idData = nullptr;
+  if (this->OutputVisibleTriangle)
+  {
+    vtkNew<vtkTypeInt64Array> visible;
+    visible->SetName("VisibleTriangle");
+    visible->SetNumberOfTuples(nPixels);
+    output->GetPointData()->AddArray(visible);
+    idData = reinterpret_cast<std::int64_t*>(visible->GetPointer(0)) +
+      static_cast<std::ptrdiff_t>(width) * (height - 1);
+  }
+  const catar::RayTracer& tracer = in.Tracer;
+  constexpr int kBand = 16;
+  const int bands = (height + kBand - 1) / kBand;
+  vtkSMPThreadLocal<catar::RayTraceStatistics> statistics;
+  vtkSMPTools::For(0, bands, [&](vtkIdType b, vtkIdType e) {
+    catar::RayTraceStatistics& s = statistics.Local();
+    for (vtkIdType band = b; band < e; ++band)
+    {
+      tracer.RenderRows(view, idData, -static_cast<std::ptrdiff_t>(width),
+        static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand), &s);
+    }
+  });
+  for (const catar::RayTraceStatistics& s : statistics)
+  {
+    this->NumberOfMirrorRays += static_cast<vtkIdType>(s.mirrorRays);
+    this->NumberOfTracedRays += static_cast<vtkIdType>(s.tracedRays);
+    this->NumberOfHits += static_cast<vtkIdType>(s.hits);
+    this->NumberOfShadowRays += static_cast<vtkIdType>(s.shadowRays);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkCatadioptricRayTracer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Samples: " << this->Samples << "\n";
+  os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)")
+     << "\n";
+  os << indent << "Color: " << this->Color[0] << " " << this->Color[1] << " " << this->Color[2]
+     << "\n";
+  os << indent << "Opacity: " << this->Opacity << "\n";
+  os << indent << "RepeatTextures: " << this->RepeatTextures << "\n";
+  os << indent << "OutputVisibleTriangle: " << this->OutputVisibleTriangle << "\n";
+  os << indent << "NumberOfMirrorRays: " << this->NumberOfMirrorRays << "\n";
+  os << indent << "NumberOfTracedRays: " << this->NumberOfTracedRays << "\n";
+  os << indent << "NumberOfHits: " << this->NumberOfHits << "\n";
+  os << indent << "NumberOfShadowRays: " << this->NumberOfShadowRays << "\n";
+}

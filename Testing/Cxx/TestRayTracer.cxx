@@ -1,0 +1,361 @@
+// vtkCatadioptricRayTracer: the exact reference. Pixels are checked against values computed here
+// independently (back projection, analytic ray-plane intersection, the lighting equation), the
+// visible-triangle buffer against the faces a convex box shows, and the image against the fast
+// path's (projection, painter sort, compositor) on a finely remeshed box.
+#include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricCompositor.h"
+#include "vtkCatadioptricLighting.h"
+#include "vtkCatadioptricLightingSupport.h"
+#include "vtkCatadioptricPainterSort.h"
+#include "vtkCatadioptricProjection.h"
+#include "vtkCatadioptricRayTracer.h"
+#include "vtkCatadioptricRemesher.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "Lighting.h"
+#include "SphereProjection.h"
+#include "TestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace
+{
+vtkSmartPointer<vtkCatadioptricCamera> DemoCamera()
+{
+  auto camera = vtkSmartPointer<vtkCatadioptricCamera>::New();
+  const std::string file = std::string(CATAR_SOURCE_DIR) + "/Data/calibration/demo-camera.yaml";
+  EXPECT_TRUE(camera->Load(file.c_str())) << camera->GetLastError();
+  return camera;
+}
+
+// An axis-aligned box as six quads with outward normals, one colour per face (cell data).
+const std::array<std::array<unsigned char, 3>, 6> kFaceColors = { { { 220, 40, 40 },
+  { 40, 200, 40 }, { 40, 40, 220 }, { 220, 220, 40 }, { 40, 220, 220 }, { 220, 40, 220 } } };
+
+vtkSmartPointer<vtkPolyData> Box(const catar::Vec3& lo, const catar::Vec3& hi)
+{
+  vtkNew<vtkPoints> pts;
+  for (int k = 0; k < 8; ++k)
+  {
+    pts->InsertNextPoint(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+  }
+  // -x, +x, -y, +y, -z, +z; counter-clockwise seen from outside.
+  const vtkIdType faces[6][4] = { { 0, 4, 6, 2 }, { 1, 3, 7, 5 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+    { 0, 2, 3, 1 }, { 4, 5, 7, 6 } };
+  vtkNew<vtkCellArray> polys;
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  for (int f = 0; f < 6; ++f)
+  {
+    polys->InsertNextCell(4, faces[f]);
+    colors->InsertNextTuple3(kFaceColors[f][0], kFaceColors[f][1], kFaceColors[f][2]);
+  }
+  auto box = vtkSmartPointer<vtkPolyData>::New();
+  box->SetPoints(pts);
+  box->SetPolys(polys);
+  box->GetCellData()->AddArray(colors);
+  return box;
+}
+
+// A quad in the plane y = y0 facing +y (towards the mirror), x in [x0, x1], z in [z0, z1].
+vtkSmartPointer<vtkPolyData> Wall(double y0, double x0, double x1, double z0, double z1)
+{
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(x0, y0, z0);
+  pts->InsertNextPoint(x0, y0, z1);
+  pts->InsertNextPoint(x1, y0, z1);
+  pts->InsertNextPoint(x1, y0, z0);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quad[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, quad);
+  auto wall = vtkSmartPointer<vtkPolyData>::New();
+  wall->SetPoints(pts);
+  wall->SetPolys(polys);
+  return wall;
+}
+
+// Pixel (x, y) of a VTK image in OpenCV convention (y down).
+const unsigned char* Pixel(vtkImageData* image, int x, int y)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  return static_cast<unsigned char*>(image->GetScalarPointer(x, dims[1] - 1 - y, 0));
+}
+
+long long VisibleTriangle(vtkImageData* image, int x, int y)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  auto* ids =
+    vtkTypeInt64Array::SafeDownCast(image->GetPointData()->GetArray("VisibleTriangle"));
+  return ids ? ids->GetValue(static_cast<vtkIdType>(dims[1] - 1 - y) * dims[0] + x) : -2;
+}
+} // namespace
+
+TEST(vtkCatadioptricRayTracer, BoxFacesAndVisibleTriangles)
+{
+  auto camera = DemoCamera();
+  const catar::SphereProjector projector(camera->GetModel());
+  const catar::Vec3 lo(-0.01, -0.37, 0.82), hi(0.29, -0.25, 0.91);
+  vtkNew<vtkCatadioptricRayTracer> tracer;
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(tracer);
+  tracer->SetCamera(camera);
+  tracer->AddMeshData(Box(lo, hi));
+  tracer->OutputVisibleTriangleOn();
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  vtkImageData* image = tracer->GetOutput();
+  EXPECT_GT(tracer->GetNumberOfHits(), 1000);
+  EXPECT_LT(tracer->GetNumberOfTracedRays(), tracer->GetNumberOfMirrorRays()); // bounds skip
+
+  // Each face's centre: seen (its outward normal faces the mirror point) -> that face's id and
+  // colour at its pixel; not seen -> another face.
+  const catar::Vec3 normals[6] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 },
+    { 0, 0, -1 }, { 0, 0, 1 } };
+  int seen = 0;
+  for (int f = 0; f < 6; ++f)
+  {
+    catar::Vec3 c = 0.5 * (lo + hi);
+    const int axis = f / 2;
+    c[axis] = f % 2 ? hi[axis] : lo[axis];
+    const catar::ProjectedPoint p = projector.ProjectWorld(c);
+    if (p.status != catar::ProjectionStatus::Valid)
+    {
+      continue;
+    }
+    const int x = static_cast<int>(std::lround(p.pixel.x()));
+    const int y = static_cast<int>(std::lround(p.pixel.y()));
+    const catar::Vec3 m = camera->GetModel().CameraToWorld(p.mirrorPoint);
+    const long long id = VisibleTriangle(image, x, y);
+    if ((m - c).dot(normals[f]) > 1e-9)
+    {
+      ++seen;
+      EXPECT_EQ(id, f) << "face " << f;
+      const unsigned char* rgba = Pixel(image, x, y);
+      for (int k = 0; k < 3; ++k)
+      {
+        EXPECT_EQ(rgba[k], kFaceColors[f][k]) << "face " << f;
+      }
+    }
+    else
+    {
+      EXPECT_NE(id, f) << "face " << f << " is turned away";
+    }
+  }
+  EXPECT_GE(seen, 2);
+  // Far from the box (a corner of the image): no triangle, background.
+  EXPECT_EQ(VisibleTriangle(image, 0, 0), -1);
+  EXPECT_EQ(Pixel(image, 0, 0)[0], 0);
+}
+
+TEST(vtkCatadioptricRayTracer, AgreesWithTheFastPathOnAFineMesh)
+{
+  auto camera = DemoCamera();
+  vtkNew<vtkCatadioptricRemesher> remesher;
+  remesher->SetInputData(Box(catar::Vec3(-0.01, -0.37, 0.82), catar::Vec3(0.29, -0.25, 0.91)));
+  remesher->SetTargetArea(2e-5);
+  vtkNew<vtkCatadioptricProjection> projection;
+  projection->SetInputConnection(remesher->GetOutputPort());
+  projection->SetCamera(camera);
+  vtkNew<vtkCatadioptricPainterSort> sort;
+  sort->SetInputConnection(projection->GetOutputPort());
+  vtkNew<vtkCatadioptricCompositor> compositor;
+  compositor->AddMeshConnection(sort->GetOutputPort());
+  compositor->Update();
+  vtkNew<vtkCatadioptricRayTracer> tracer;
+  tracer->SetCamera(camera);
+  tracer->AddMeshConnection(remesher->GetOutputPort());
+  tracer->Update();
+  vtkImageData* fast = compositor->GetOutput();
+  vtkImageData* exact = tracer->GetOutput();
+  int dims[3], dims2[3];
+  fast->GetDimensions(dims);
+  exact->GetDimensions(dims2);
+  ASSERT_EQ(dims[0], dims2[0]);
+  ASSERT_EQ(dims[1], dims2[1]);
+  // Silhouettes (non-black) and colours.
+  long inter = 0, uni = 0, sameColour = 0;
+  for (int y = 0; y < dims[1]; ++y)
+  {
+    for (int x = 0; x < dims[0]; ++x)
+    {
+      const unsigned char* a = Pixel(fast, x, y);
+      const unsigned char* b = Pixel(exact, x, y);
+      const bool ia = a[0] || a[1] || a[2];
+      const bool ib = b[0] || b[1] || b[2];
+      inter += ia && ib;
+      uni += ia || ib;
+      sameColour += ia && ib && a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+    }
+  }
+  ASSERT_GT(uni, 500);
+  const double iou = static_cast<double>(inter) / static_cast<double>(uni);
+  std::cout << "[ tracer   ] fine box: IoU " << iou << ", same colour "
+            << static_cast<double>(sameColour) / static_cast<double>(inter) << " of " << inter
+            << " pixels" << std::endl;
+  EXPECT_GT(iou, 0.97);
+  EXPECT_GT(sameColour, 0.97 * inter);
+}
+
+TEST(vtkCatadioptricRayTracer, LightingAndShadowsAreExact)
+{
+  auto camera = DemoCamera();
+  const catar::CameraModel model = camera->GetModel();
+  const catar::SphereProjector projector(model);
+  const double wallY = -0.5;
+  auto wall = Wall(wallY, -0.4, 0.4, 0.6, 1.4);
+  // A small occluder between the light and the wall.
+  auto occluder = Wall(-0.4, -0.03, 0.03, 0.97, 1.03);
+  vtkNew<vtkLight> light;
+  light->SetPositional(true);
+  light->SetConeAngle(180.0);
+  light->SetPosition(0.1, -0.3, 1.2);
+  light->SetFocalPoint(0.0, -0.5, 1.0);
+  light->SetDiffuseColor(1.0, 0.9, 0.8);
+  light->SetAmbientColor(0.0, 0.0, 0.0);
+  const catar::Vec3 lightPosition(0.1, -0.3, 1.2);
+
+  for (bool shadows : { false, true })
+  {
+    vtkNew<vtkCatadioptricLighting> lighting;
+    lighting->AddLight(light);
+    lighting->SetShadingModeToFlat();
+    lighting->SetShadows(shadows);
+    lighting->SetDiffuseColor(0.7, 0.7, 0.7);
+    lighting->SetAmbient(0.1);
+    lighting->SetDiffuse(1.0);
+    lighting->SetSpecular(0.3);
+    lighting->SetSpecularPower(10.0);
+    vtkNew<vtkCatadioptricRayTracer> tracer;
+    vtkNew<catar_test::ErrorCounter> errors;
+    errors->Watch(tracer);
+    tracer->SetCamera(camera);
+    tracer->AddMeshData(wall);
+    tracer->AddMeshData(occluder);
+    tracer->SetMeshLighting(0, lighting);
+    tracer->SetMeshLighting(1, lighting);
+    tracer->OutputVisibleTriangleOn();
+    tracer->Update();
+    ASSERT_EQ(errors->Count, 0) << errors->Last;
+    vtkImageData* image = tracer->GetOutput();
+
+    // The lighting filter's parameters, as the fast path reads them.
+    const catar::Material material = vtkCatadioptricLightingSupport::ConvertProperty(
+      lighting->GetProperty(), lighting->GetEmission());
+    const std::vector<catar::LightSource> sources =
+      vtkCatadioptricLightingSupport::ConvertLights(lighting->GetLights());
+    ASSERT_EQ(sources.size(), 1u);
+    EXPECT_EQ(sources[0].kind, catar::LightSource::Kind::Point);
+    const catar::Vec3 ambient(lighting->GetGlobalAmbient()[0], lighting->GetGlobalAmbient()[1],
+      lighting->GetGlobalAmbient()[2]);
+
+    // Points of the wall: one in the occluder's shadow, others lit.
+    const catar::Vec3 occluderCentre(0.0, -0.4, 1.0);
+    const double t = (wallY - lightPosition.y()) / (occluderCentre.y() - lightPosition.y());
+    const catar::Vec3 shadowed = lightPosition + t * (occluderCentre - lightPosition);
+    int checked = 0;
+    for (const catar::Vec3& q : { shadowed, catar::Vec3(0.2, wallY, 1.2),
+           catar::Vec3(-0.25, wallY, 0.9), catar::Vec3(0.1, wallY, 0.7) })
+    {
+      const catar::ProjectedPoint pq = projector.ProjectWorld(q);
+      ASSERT_EQ(pq.status, catar::ProjectionStatus::Valid);
+      const int x = static_cast<int>(std::lround(pq.pixel.x()));
+      const int y = static_cast<int>(std::lround(pq.pixel.y()));
+      ASSERT_EQ(VisibleTriangle(image, x, y), 0); // the wall, mesh 0, cell 0
+      // The exact hit of this pixel's centre ray with the wall plane, computed here.
+      const catar::BackProjectedRay ray = projector.BackProjectWorld(catar::Vec2(x, y));
+      ASSERT_TRUE(catar::HasProjection(ray.status));
+      const double s = (wallY - ray.mirrorPoint.y()) / ray.direction.y();
+      const catar::Vec3 p = ray.mirrorPoint + s * ray.direction;
+      // Is p in the occluder's shadow? Segment p -> light against the occluder's plane y = -0.4.
+      const double u = (-0.4 - p.y()) / (lightPosition.y() - p.y());
+      const catar::Vec3 o = p + u * (lightPosition - p);
+      const bool inShadow = std::abs(o.x()) < 0.03 && std::abs(o.z() - 1.0) < 0.03;
+      EXPECT_EQ(inShadow, (q - shadowed).norm() < 1e-12) << "point " << q.transpose();
+      const unsigned char lit = shadows && inShadow ? 0 : 1;
+      const catar::Vec3 expected = catar::Shade(p, catar::Vec3(0, 1, 0), ray.mirrorPoint,
+        sources, material, ambient, &lit, false);
+      const unsigned char* rgba = Pixel(image, x, y);
+      for (int k = 0; k < 3; ++k)
+      {
+        EXPECT_NEAR(rgba[k], 255.0 * std::min(1.0, expected[k]), 1.0)
+          << "channel " << k << " at " << q.transpose() << (shadows ? " with" : " without")
+          << " shadows";
+      }
+      ++checked;
+    }
+    EXPECT_EQ(checked, 4);
+    if (shadows)
+    {
+      EXPECT_GT(tracer->GetNumberOfShadowRays(), 0);
+    }
+  }
+}
+
+TEST(vtkCatadioptricRayTracer, BadInputGivesErrors)
+{
+  vtkNew<catar_test::ErrorCounter> errors;
+  {
+    vtkNew<vtkCatadioptricRayTracer> tracer; // no camera
+    errors->Watch(tracer);
+    tracer->AddMeshData(Wall(-0.5, -0.1, 0.1, 0.9, 1.1));
+    tracer->Update();
+    EXPECT_EQ(errors->Count, 1);
+  }
+  {
+    vtkNew<vtkCatadioptricRayTracer> tracer; // a texture index with no texture
+    errors->Watch(tracer);
+    tracer->SetCamera(DemoCamera());
+    auto wall = Wall(-0.5, -0.1, 0.1, 0.9, 1.1);
+    vtkNew<vtkFloatArray> tc;
+    tc->SetName("TCoords");
+    tc->SetNumberOfComponents(2);
+    for (int i = 0; i < 4; ++i)
+    {
+      tc->InsertNextTuple2(i & 1, i >> 1);
+    }
+    wall->GetPointData()->SetTCoords(tc);
+    vtkNew<vtkIntArray> index;
+    index->SetName("TextureIndex");
+    index->InsertNextValue(3);
+    wall->GetFieldData()->AddArray(index);
+    vtkNew<vtkImageData> texture;
+    texture->SetDimensions(2, 2, 1);
+    texture->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    tracer->AddMeshData(wall);
+    tracer->AddTextureData(texture);
+    tracer->Update();
+    EXPECT_EQ(errors->Count, 2);
+    EXPECT_NE(errors->Last.find("texture 3"), std::string::npos) << errors->Last;
+  }
+  {
+    vtkNew<vtkCatadioptricRayTracer> tracer; // a NaN point
+    errors->Watch(tracer);
+    tracer->SetCamera(DemoCamera());
+    auto wall = Wall(-0.5, -0.1, 0.1, 0.9, 1.1);
+    wall->GetPoints()->SetPoint(0, std::nan(""), 0, 0);
+    tracer->AddMeshData(wall);
+    tracer->Update();
+    EXPECT_EQ(errors->Count, 3);
+    EXPECT_NE(errors->Last.find("NaN"), std::string::npos) << errors->Last;
+  }
+}
