@@ -95,19 +95,14 @@ std::int64_t CeilToPixel(std::int64_t a)
   return -FloorToPixel(-a);
 }
 
-// std::min(1, std::max(0, v)) written out (same results, NaN -> 0): through the references that
-// std::min / std::max return, GCC sometimes keeps the operands in stack temporaries and selects
-// their addresses, which made the Gouraud loop ~15% slower once the file grew (measured).
 inline float Clamp01(float v)
 {
-  const float lo = 0.0f < v ? v : 0.0f;
-  return lo < 1.0f ? lo : 1.0f;
+  return std::min(1.0f, std::max(0.0f, v));
 }
 
 inline float Clamp01(double v)
 {
-  const double lo = 0.0 < v ? v : 0.0;
-  return static_cast<float>(lo < 1.0 ? lo : 1.0);
+  return static_cast<float>(std::min(1.0, std::max(0.0, v)));
 }
 
 // v in [0, 255] up to rounding noise (never negative): round to nearest, clamp to 255.
@@ -252,7 +247,7 @@ CATAR_ALWAYS_INLINE void Bilinear(const Texture& t, double u, double v, float ou
 // the inner loop needs is copied to locals first: stores through the uint8_t pixel pointer may
 // alias anything, which would otherwise force reloads from s.
 template<bool kFlat, bool kDepth, bool kIds>
-bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView, std::int64_t id,
+bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView, RasterId id,
   const Setup& s)
 {
   const int xMin = s.xMin;
@@ -274,7 +269,7 @@ bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView
     std::int64_t w0 = r0, w1 = r1, w2 = r2;
     std::uint8_t* p = img.pixel(xMin, y);
     float* zp = kDepth ? depthView->at(xMin, y) : nullptr;
-    std::int64_t* ip = kIds ? idView->at(xMin, y) : nullptr;
+    RasterId* ip = kIds ? idView->at(xMin, y) : nullptr;
     const double rowIndex = static_cast<double>(y - s.yMin);
     const double rRow = kFlat ? 0.0 : cr.origin + cr.dy * rowIndex;
     const double gRow = kFlat ? 0.0 : cg.origin + cg.dy * rowIndex;
@@ -362,7 +357,7 @@ static_assert(255.0f * (1.0f / 255.0f) == 1.0f, "255 * (1 / 255) must round to 1
 // bilinear texel (s.colour always set). Separate from Scan to keep texturing out of its loops.
 template<bool kDepth, bool kIds, int kChannels>
 bool ScanTextured(const ImageView& img, const DepthView* depthView, const IdView* idView,
-  std::int64_t id, const Setup& s, const TexSetup& ts)
+  RasterId id, const Setup& s, const TexSetup& ts)
 {
   const int xMin = s.xMin;
   const int xMax = s.xMax;
@@ -387,7 +382,7 @@ bool ScanTextured(const ImageView& img, const DepthView* depthView, const IdView
     std::int64_t w0 = r0, w1 = r1, w2 = r2;
     std::uint8_t* p = img.pixel(xMin, y);
     float* zp = kDepth ? depthView->at(xMin, y) : nullptr;
-    std::int64_t* ip = kIds ? idView->at(xMin, y) : nullptr;
+    RasterId* ip = kIds ? idView->at(xMin, y) : nullptr;
     const double rowIndex = static_cast<double>(y - s.yMin);
     const double rRow = cr.origin + cr.dy * rowIndex;
     const double gRow = cg.origin + cg.dy * rowIndex;
@@ -454,7 +449,7 @@ bool ScanTextured(const ImageView& img, const DepthView* depthView, const IdView
 
 template<bool kDepth, bool kIds>
 bool ScanTextured(const ImageView& img, const DepthView* depthView, const IdView* idView,
-  std::int64_t id, const Setup& s, const TexSetup& ts, int channels)
+  RasterId id, const Setup& s, const TexSetup& ts, int channels)
 {
   switch (channels)
   {
@@ -468,10 +463,12 @@ bool ScanTextured(const ImageView& img, const DepthView* depthView, const IdView
 }
 
 // The textured end of Rasterize<true>: colour, depth and (u, v) planes, then the scan. s and basis
-// come from the common set-up; a, b, c are the vertices in the normalised winding.
+// come from the common set-up (s is completed here); a, b, c are the vertices in the normalised
+// winding. Out of line, and s is taken by reference: inlined, the textured scans ran slower, and a
+// copy of s cost ~10% on 2-pixel triangles (measured).
 RasterResult DrawTextured(const ImageView& target, const DepthView* depth, const IdView* ids,
-  std::int64_t id, const TextureView& texture, Setup s, const PlaneBasis basis,
-  const RasterVertex* a, const RasterVertex* b, const RasterVertex* c)
+  RasterId id, const TextureView& texture, Setup& s, const PlaneBasis& basis, const RasterVertex* a,
+  const RasterVertex* b, const RasterVertex* c)
 {
   const RasterVertex* v[3] = { a, b, c };
   TexSetup ts;
@@ -561,7 +558,7 @@ namespace
 // only the two painter scans (no depth, no ids), so their register allocation does not depend on
 // the other variants (measured: inlined together, Gouraud ran ~6% slower).
 CATAR_NOINLINE bool ScanWithBuffers(const ImageView& target, const DepthView* depth,
-  const IdView* ids, std::int64_t id, const Setup& s, bool flat)
+  const IdView* ids, RasterId id, const Setup& s, bool flat)
 {
   if (flat)
   {
@@ -584,7 +581,7 @@ CATAR_NOINLINE bool ScanWithBuffers(const ImageView& target, const DepthView* de
 template<bool kTextured>
 CATAR_ALWAYS_INLINE RasterResult Rasterize(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
-  const TextureView* texture, const IdView* ids, std::int64_t id)
+  const TextureView* texture, const IdView* ids, RasterId id)
 {
   if (!target.data || target.width <= 0 || target.height <= 0 || !IsFinite(v0) || !IsFinite(v1) ||
     !IsFinite(v2))
@@ -726,7 +723,7 @@ CATAR_ALWAYS_INLINE RasterResult Rasterize(const ImageView& target, const Raster
 // The textured variant, out of line: the public function inlines only the untextured one.
 CATAR_NOINLINE RasterResult RasterizeTextured(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
-  const TextureView* texture, const IdView* ids, std::int64_t id)
+  const TextureView* texture, const IdView* ids, RasterId id)
 {
   return Rasterize<true>(target, v0, v1, v2, clip, depth, texture, ids, id);
 }
@@ -734,7 +731,7 @@ CATAR_NOINLINE RasterResult RasterizeTextured(const ImageView& target, const Ras
 
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
-  const TextureView* texture, const IdView* ids, std::int64_t id)
+  const TextureView* texture, const IdView* ids, RasterId id)
 {
   if (texture)
   {
@@ -745,9 +742,9 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
 
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth,
-  const TextureView* texture, const IdView* ids, std::int64_t id)
+  const TextureView* texture, const IdView* ids, RasterId id)
 {
-  return rasterizeTriangle(target, v0, v1, v2, PixelRect{ 0, 0, target.width, target.height },
-    depth, texture, ids, id);
+  return rasterizeTriangle(
+    target, v0, v1, v2, PixelRect{ 0, 0, target.width, target.height }, depth, texture, ids, id);
 }
 }

@@ -77,23 +77,26 @@ struct DepthView
   float* at(int x, int y) const { return data + y * rowStride + static_cast<std::ptrdiff_t>(x); }
 };
 
-/// Optional id buffer (not owned), one 64-bit integer per pixel, addressed like ImageView with
-/// rowStride counted in values (may be negative). It must be at least as large as the target
-/// image. The rasteriser writes the triangle's id into every pixel it draws (the pixels whose
-/// colour it composites, after the coverage, clip and depth tests), whatever the alpha: after a
-/// sequence of triangles each pixel holds the id of the last triangle drawn there.
+/// A triangle id: a 64-bit signed integer, declared long long (not std::int64_t, which is long on
+/// LP64 Linux) so that the buffers of VTK's 64-bit integer arrays (vtkTypeInt64 is long long) are
+/// written as they are, without a copy.
+using RasterId = long long;
+static_assert(sizeof(RasterId) == 8, "RasterId must be a 64-bit integer");
+
+/// Optional id buffer (not owned), one RasterId per pixel, addressed like ImageView with rowStride
+/// counted in values (may be negative). It must be at least as large as the target image. The
+/// rasteriser writes the triangle's id into every pixel it draws (the pixels whose colour it
+/// composites, after the coverage, clip and depth tests), whatever the alpha: after a sequence of
+/// triangles each pixel holds the id of the last triangle drawn there.
 struct IdView
 {
-  std::int64_t* data = nullptr; ///< address of the id of pixel (0, 0)
+  RasterId* data = nullptr;     ///< address of the id of pixel (0, 0)
   int width = 0;                ///< number of columns
   int height = 0;               ///< number of rows
   std::ptrdiff_t rowStride = 0; ///< values from row y to row y+1 (may be negative)
 
   /// Address of the id of pixel (x, y); no bounds check.
-  std::int64_t* at(int x, int y) const
-  {
-    return data + y * rowStride + static_cast<std::ptrdiff_t>(x);
-  }
+  RasterId* at(int x, int y) const { return data + y * rowStride + static_cast<std::ptrdiff_t>(x); }
 };
 
 /// Integer clip rectangle [x0, x1) x [y0, y1) in pixels; used to split work into tiles.
@@ -199,12 +202,12 @@ void sampleTexture(const TextureView& texture, float u, float v, float rgba[4]);
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip,
   const DepthView* depth = nullptr, const TextureView* texture = nullptr,
-  const IdView* ids = nullptr, std::int64_t id = 0);
+  const IdView* ids = nullptr, RasterId id = 0);
 
 /// Convenience overload: clip = the whole image.
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth = nullptr,
-  const TextureView* texture = nullptr, const IdView* ids = nullptr, std::int64_t id = 0);
+  const TextureView* texture = nullptr, const IdView* ids = nullptr, RasterId id = 0);
 }
 
 #endif

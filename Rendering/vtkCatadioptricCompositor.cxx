@@ -22,7 +22,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
-#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -36,9 +35,9 @@ struct Triangle
   double Depth;
   double YMin;
   double YMax;
-  int Texture;  // index into the textures, -1 for none
-  bool Opaque;  // DEPTH_BUFFER: drawn in the first pass, writes depth
-  std::int64_t Id; // meshIndex * 2^32 + cellId (OutputVisibleTriangle)
+  int Texture;        // index into the textures, -1 for none
+  bool Opaque;        // DEPTH_BUFFER: drawn in the first pass, writes depth
+  catar::RasterId Id; // meshIndex * 2^32 + cellId (OutputVisibleTriangle)
 };
 
 // The texture coordinates of a mesh: its active TCoords, else an array "TCoords" or
@@ -55,22 +54,22 @@ vtkDataArray* TextureCoordinates(vtkPolyData* mesh)
   }
   return (t && t->GetNumberOfComponents() >= 2) ? t : nullptr;
 }
-// The bands of RequestData with a depth buffer (depthMode) and/or an id buffer (ids: the output
-// array, VTK row order, or null). Each band initialises its own rows of both buffers. In depth
-// mode the opaque triangles come first and write depth; the others only test it.
+// The bands of RequestData with a depth buffer (depth: width x height floats, top row first, or
+// null) and/or an id buffer (ids: the output array, VTK row order, or null). Each band initialises
+// its own rows of both buffers. In depth mode the opaque triangles come first and write depth; the
+// others only test it.
 void DrawWithBuffers(const catar::ImageView& view, const std::vector<Triangle>& triangles,
-  const std::vector<catar::TextureView>& textures, int bandHeight, bool depthMode,
-  std::int64_t* ids)
+  const std::vector<catar::TextureView>& textures, int bandHeight, float* depth,
+  catar::RasterId* ids)
 {
   const int width = view.width;
   const int height = view.height;
   const std::ptrdiff_t w = width;
-  std::unique_ptr<float[]> depth(
-    depthMode ? new float[static_cast<size_t>(width) * static_cast<size_t>(height)] : nullptr);
+  const bool depthMode = depth != nullptr;
   catar::DepthView write;
   if (depthMode)
   {
-    write.data = depth.get();
+    write.data = depth;
     write.width = width;
     write.height = height;
     write.rowStride = w;
@@ -99,7 +98,7 @@ void DrawWithBuffers(const catar::ImageView& view, const std::vector<Triangle>& 
         }
         if (ids)
         {
-          std::fill(idView.at(0, y), idView.at(0, y) + width, std::int64_t(-1));
+          std::fill(idView.at(0, y), idView.at(0, y) + width, catar::RasterId(-1));
         }
       }
       for (const Triangle& t : triangles)
@@ -428,7 +427,7 @@ int vtkCatadioptricCompositor::RequestData(
         return 0;
       }
     }
-    const std::int64_t meshKey = static_cast<std::int64_t>(m) << 32;
+    const catar::RasterId meshKey = static_cast<catar::RasterId>(m) << 32;
     const float solid[4] = { static_cast<float>(this->Color[0]),
       static_cast<float>(this->Color[1]), static_cast<float>(this->Color[2]), 1.0f };
     const vtkCatadioptricColorArray color(mesh, this->ColorArrayName, solid);
@@ -498,10 +497,14 @@ int vtkCatadioptricCompositor::RequestData(
           v.depth = static_cast<float>(pathLength->GetComponent(pid, 0));
         }
       };
-      const std::int64_t id = wantIds
-        ? meshKey +
-          (originalIds ? static_cast<std::int64_t>(originalIds->GetComponent(cellId, 0)) : cellId)
-        : 0;
+      catar::RasterId id = 0;
+      if (wantIds)
+      {
+        const double original = originalIds ? originalIds->GetComponent(cellId, 0) : 0.0;
+        id = meshKey +
+          (originalIds ? static_cast<catar::RasterId>(original)
+                       : static_cast<catar::RasterId>(cellId));
+      }
       // Fan triangulation of polygons.
       for (vtkIdType k = 1; k + 1 < n; ++k)
       {
@@ -545,30 +548,38 @@ int vtkCatadioptricCompositor::RequestData(
   const int nBands = (height + kBand - 1) / kBand;
   if (depthMode || wantIds)
   {
-    // Per-pixel ids: an int64 array in the colour image's (VTK) row order. The rasteriser writes
-    // std::int64_t; where vtkTypeInt64 is another 64-bit type (long long), a copy converts.
+    // Per-pixel ids: an int64 array in the colour image's (VTK) row order, written in place
+    // (catar::RasterId is long long, as vtkTypeInt64; a platform where they differ gets a copy).
     vtkNew<vtkTypeInt64Array> visibleTriangle;
-    std::vector<std::int64_t> idBuffer;
-    std::int64_t* ids = nullptr;
+    std::vector<catar::RasterId> idCopy;
+    catar::RasterId* ids = nullptr;
     if (wantIds)
     {
       visibleTriangle->SetName("VisibleTriangle");
       visibleTriangle->SetNumberOfTuples(nPixels);
       output->GetPointData()->AddArray(visibleTriangle);
-      if constexpr (std::is_same<vtkTypeInt64, std::int64_t>::value)
+      if constexpr (std::is_same<vtkTypeInt64, catar::RasterId>::value)
       {
-        ids = reinterpret_cast<std::int64_t*>(visibleTriangle->GetPointer(0)); // same type
+        ids = reinterpret_cast<catar::RasterId*>(visibleTriangle->GetPointer(0)); // same type
       }
       else
       {
-        idBuffer.resize(static_cast<size_t>(nPixels));
-        ids = idBuffer.data();
+        idCopy.resize(static_cast<size_t>(nPixels));
+        ids = idCopy.data();
       }
     }
-    DrawWithBuffers(view, triangles, textures, kBand, depthMode, ids);
-    if (!idBuffer.empty())
+    // The depth buffer is scratch memory kept between executions (allocating and first touching
+    // it every frame costs more than the depth test itself on some systems).
+    float* depth = nullptr;
+    if (depthMode)
     {
-      std::copy(idBuffer.begin(), idBuffer.end(), visibleTriangle->GetPointer(0));
+      this->DepthBuffer.resize(static_cast<size_t>(nPixels));
+      depth = this->DepthBuffer.data();
+    }
+    DrawWithBuffers(view, triangles, textures, kBand, depth, ids);
+    if (!idCopy.empty())
+    {
+      std::copy(idCopy.begin(), idCopy.end(), visibleTriangle->GetPointer(0));
     }
     this->NumberOfDrawnTriangles = static_cast<vtkIdType>(triangles.size());
     this->UpdateProgress(1.0);
@@ -614,6 +625,5 @@ void vtkCatadioptricCompositor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
   os << indent << "RepeatTextures: " << (this->RepeatTextures ? "On" : "Off") << "\n";
   os << indent << "Visibility: " << this->GetVisibilityAsString() << "\n";
-  os << indent << "OutputVisibleTriangle: " << (this->OutputVisibleTriangle ? "On" : "Off")
-     << "\n";
+  os << indent << "OutputVisibleTriangle: " << (this->OutputVisibleTriangle ? "On" : "Off") << "\n";
 }

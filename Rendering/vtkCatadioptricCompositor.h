@@ -44,8 +44,9 @@
  *
  * Textures: images on input port 2 (one or more). A mesh with texture coordinates (its active
  * TCoords, or an array TCoords / TextureCoordinates) is textured with the image its field data
- * array TextureIndex names, or the first one (a negative TextureIndex: no texture): the colour above is multiplied by the bilinearly
- * sampled texel (u, v in [0,1], (0,0) at the image's bottom-left, VTK's convention).
+ * array TextureIndex names, or the first one (a negative TextureIndex: no texture): the colour
+ * above is multiplied by the bilinearly sampled texel (u, v in [0,1], (0,0) at the image's
+ * bottom-left, VTK's convention).
  *
  * Without a frame the output is BackgroundColor, of ImageSize if set, else of the camera's image
  * size (from the meshes' field data).
@@ -55,6 +56,8 @@
 
 #include "CatadioptricARRenderingModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+
+#include <vector> // for std::vector
 
 class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricCompositor : public vtkImageAlgorithm
 {
@@ -163,6 +166,7 @@ protected:
   int LastSize[2] = { 0, 0 };
   vtkIdType NumberOfDrawnTriangles = 0;
   vtkIdType NumberOfSkippedTriangles = 0;
+  std::vector<float> DepthBuffer; // DEPTH_BUFFER scratch, kept between executions
 
 private:
   vtkCatadioptricCompositor(const vtkCatadioptricCompositor&) = delete;

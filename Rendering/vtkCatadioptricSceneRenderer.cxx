@@ -172,9 +172,8 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   }
   in.Compositor->RemoveAllTextureConnections();
   // Scene key `visibility`: painter order (default) or a depth buffer on the path length.
-  in.Compositor->SetVisibility(scene.visibility == "depth"
-      ? vtkCatadioptricCompositor::DEPTH_BUFFER
-      : vtkCatadioptricCompositor::PAINTER);
+  in.Compositor->SetVisibility(scene.visibility == "depth" ? vtkCatadioptricCompositor::DEPTH_BUFFER
+                                                           : vtkCatadioptricCompositor::PAINTER);
   int textures = 0;
   for (size_t i = 0; i < meshes.size(); ++i)
   {

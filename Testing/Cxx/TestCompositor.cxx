@@ -14,15 +14,15 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
-#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
-#include "vtkImageData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
-#include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTypeInt64Array.h"
@@ -524,8 +524,8 @@ Hit Intersect(const Facet& f, const Vec3& o, const Vec3& d, double margin)
 // when the pixel is too close to call (near a facet boundary, where the rasterised straight edges
 // differ from the true curved ones, or where the two nearest hits are closer than `tie` metres,
 // within the error of interpolating PathLength linearly in screen space).
-int ExpectedFacet(const catar::SphereProjector& projector, const std::vector<Facet>& facets,
-  int x, int y, double margin, double tie)
+int ExpectedFacet(const catar::SphereProjector& projector, const std::vector<Facet>& facets, int x,
+  int y, double margin, double tie)
 {
   const catar::BackProjectedRay ray = projector.BackProjectWorld(catar::Vec2(x, y));
   if (!catar::HasProjection(ray.status))
@@ -565,9 +565,9 @@ int ExpectedFacet(const catar::SphereProjector& projector, const std::vector<Fac
 
 struct VisibilityScore
 {
-  int checked = 0;        // pixels with a clear expected facet, at least two facets behind it
-  int wrong = 0;          // of those, pixels showing another colour
-  int checkedSingle = 0;  // pixels with exactly one facet (or background), as a sanity check
+  int checked = 0;       // pixels with a clear expected facet, at least two facets behind it
+  int wrong = 0;         // of those, pixels showing another colour
+  int checkedSingle = 0; // pixels with exactly one facet (or background), as a sanity check
   int wrongSingle = 0;
 };
 
@@ -722,8 +722,7 @@ TEST(vtkCatadioptricCompositor, DepthBufferResolvesCyclicOverlap)
     const double a = (90.0 + 120.0 * i) * 3.14159265358979323846 / 180.0;
     p[i] = c + Vec3(r * std::cos(a), r * std::sin(a), 0.0);
   }
-  const std::array<unsigned char, 3> colors[3] = { { 255, 0, 0 }, { 0, 255, 0 },
-    { 255, 255, 0 } };
+  const std::array<unsigned char, 3> colors[3] = { { 255, 0, 0 }, { 0, 255, 0 }, { 255, 255, 0 } };
   std::vector<Facet> facets;
   for (int i = 0; i < 3; ++i)
   {
@@ -755,7 +754,8 @@ TEST(vtkCatadioptricCompositor, DepthBufferResolvesCyclicOverlap)
   EXPECT_GT(s.wrong, 100) << "a painter order cannot draw a cycle";
 
   // Finely meshed (64 triangles each) the edges follow the curves: judged up to 4 mm from them.
-  const auto fine = Composite(cam, { FacetMesh(facets, 8) }, vtkCatadioptricCompositor::DEPTH_BUFFER);
+  const auto fine =
+    Composite(cam, { FacetMesh(facets, 8) }, vtkCatadioptricCompositor::DEPTH_BUFFER);
   const VisibilityScore f = Score(fine, cam, facets, 0.004, tie);
   EXPECT_GT(f.checked, 1000);
   EXPECT_EQ(f.wrong, 0) << "of " << f.checked;
@@ -908,8 +908,8 @@ TEST(vtkCatadioptricCompositor, VisibleTriangleIdsNameTheDrawnCell)
     original->InsertNextValue(1000 + c);
   }
   tagged->GetCellData()->AddArray(original);
-  const auto withTags = Composite(
-    cam, { meshes[0], tagged }, vtkCatadioptricCompositor::DEPTH_BUFFER, true, true);
+  const auto withTags =
+    Composite(cam, { meshes[0], tagged }, vtkCatadioptricCompositor::DEPTH_BUFFER, true, true);
   const auto perMeshTagged = CheckIds(withTags, cells, { 0, 1000 });
   EXPECT_GT(perMeshTagged[1], 500);
 }

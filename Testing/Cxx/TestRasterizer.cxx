@@ -2300,7 +2300,7 @@ struct Ids
 {
   int w = 0;
   int h = 0;
-  std::vector<std::int64_t> buf;
+  std::vector<RasterId> buf;
 
   Ids(int width, int height)
     : w(width)
@@ -2316,7 +2316,7 @@ struct Ids
     return IdView{ buf.data() + static_cast<std::ptrdiff_t>(w) * (h - 1), w, h, -w };
   }
 
-  std::int64_t at(int x, int y) const { return buf[static_cast<std::size_t>(y) * w + x]; }
+  RasterId at(int x, int y) const { return buf[static_cast<std::size_t>(y) * w + x]; }
 };
 } // namespace
 
@@ -2355,8 +2355,8 @@ TEST(Rasterizer, IdBufferHoldsTheLastTriangleDrawnInEachPixel)
         v[i].v = 0.5f;
       }
       const TextureView* texture = kind == 3 ? &tv : nullptr;
-      const RasterResult r1 = rasterizeTriangle(
-        plain.view(), v[0], v[1], v[2], useDepth ? &dvPlain : nullptr, texture);
+      const RasterResult r1 =
+        rasterizeTriangle(plain.view(), v[0], v[1], v[2], useDepth ? &dvPlain : nullptr, texture);
       const RasterResult r2 = rasterizeTriangle(
         withIds.view(), v[0], v[1], v[2], useDepth ? &dvIds : nullptr, texture, &iv, 1000 + k);
       EXPECT_EQ(r1, r2);
@@ -2370,7 +2370,7 @@ TEST(Rasterizer, IdBufferHoldsTheLastTriangleDrawnInEachPixel)
       {
         // Expected: the last covering triangle (painter), or the nearest one, the first drawn
         // among equal depths (strict depth test).
-        std::int64_t expected = -1;
+        RasterId expected = -1;
         float best = std::numeric_limits<float>::infinity();
         for (int k = 0; k < static_cast<int>(tris.size()); ++k)
         {
@@ -2403,12 +2403,12 @@ TEST(Rasterizer, InvalidIdBuffersAreRejected)
   IdView none = sv;
   none.data = nullptr;
   const RasterVertex a = Vtx(0, 0), b = Vtx(9, 0), c = Vtx(0, 9);
-  EXPECT_EQ(rasterizeTriangle(img.view(), a, b, c, nullptr, nullptr, &sv, 1),
-    RasterResult::InvalidInput);
-  EXPECT_EQ(rasterizeTriangle(img.view(), a, b, c, nullptr, nullptr, &none, 1),
-    RasterResult::InvalidInput);
+  EXPECT_EQ(
+    rasterizeTriangle(img.view(), a, b, c, nullptr, nullptr, &sv, 1), RasterResult::InvalidInput);
+  EXPECT_EQ(
+    rasterizeTriangle(img.view(), a, b, c, nullptr, nullptr, &none, 1), RasterResult::InvalidInput);
   EXPECT_EQ(CountNonZeroAlpha(img), 0);
-  for (std::int64_t v : small.buf)
+  for (RasterId v : small.buf)
   {
     EXPECT_EQ(v, -1);
   }
