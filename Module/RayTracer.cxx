@@ -225,8 +225,8 @@ void RayTracer::ShadeHit(const Vec3& origin, const Vec3& direction, const RaySce
   {
     for (int k = 0; k < 4; ++k)
     {
-      base[k] = static_cast<float>(w0 * mesh.colors[4 * t[0] + k] +
-        w1 * mesh.colors[4 * t[1] + k] + w2 * mesh.colors[4 * t[2] + k]);
+      base[k] = static_cast<float>(w0 * mesh.colors[4 * t[0] + k] + w1 * mesh.colors[4 * t[1] + k] +
+        w2 * mesh.colors[4 * t[2] + k]);
     }
   }
   else if (mesh.colorSource == TraceMesh::ColorSource::Cell)
@@ -283,8 +283,8 @@ void RayTracer::ShadeHit(const Vec3& origin, const Vec3& direction, const RaySce
     static_cast<float>(colour.z()), static_cast<float>(base[3] * mesh.opacity) };
   if (mesh.texture >= 0 && !mesh.tcoords.empty())
   {
-    const float u = static_cast<float>(w0 * mesh.tcoords[2 * t[0]] +
-      w1 * mesh.tcoords[2 * t[1]] + w2 * mesh.tcoords[2 * t[2]]);
+    const float u = static_cast<float>(
+      w0 * mesh.tcoords[2 * t[0]] + w1 * mesh.tcoords[2 * t[1]] + w2 * mesh.tcoords[2 * t[2]]);
     const float v = static_cast<float>(w0 * mesh.tcoords[2 * t[0] + 1] +
       w1 * mesh.tcoords[2 * t[1] + 1] + w2 * mesh.tcoords[2 * t[2] + 1]);
     float texel[4];
@@ -300,8 +300,8 @@ void RayTracer::ShadeHit(const Vec3& origin, const Vec3& direction, const RaySce
   }
 }
 
-void RayTracer::RenderRows(const ImageView& target, std::int64_t* ids,
-  std::ptrdiff_t idRowStride, int y0, int y1, RayTraceStatistics* statistics) const
+void RayTracer::RenderRows(const ImageView& target, std::int64_t* ids, std::ptrdiff_t idRowStride,
+  int y0, int y1, RayTraceStatistics* statistics) const
 {
   if (!this->HasScene || this->Width <= 0 || target.data == nullptr ||
     target.width != this->Width || target.height != this->Height)

@@ -69,9 +69,9 @@ struct TraceMesh
 
 struct RayTraceStatistics
 {
-  std::size_t mirrorRays = 0;  ///< sample rays that reflect off the mirror
-  std::size_t tracedRays = 0;  ///< of those, rays that reach the scene's bounding box
-  std::size_t hits = 0;        ///< rays that hit a triangle
+  std::size_t mirrorRays = 0; ///< sample rays that reflect off the mirror
+  std::size_t tracedRays = 0; ///< of those, rays that reach the scene's bounding box
+  std::size_t hits = 0;       ///< rays that hit a triangle
   std::size_t shadowRays = 0;
 };
 
@@ -116,8 +116,8 @@ private:
   };
 
   /// Colour (RGBA, [0,1]) of the hit of ray `r` with global triangle `t` at barycentric (u, v).
-  void ShadeHit(const Vec3& origin, const Vec3& direction, const RayScene::Hit& hit,
-    float rgba[4], RayTraceStatistics& statistics) const;
+  void ShadeHit(const Vec3& origin, const Vec3& direction, const RayScene::Hit& hit, float rgba[4],
+    RayTraceStatistics& statistics) const;
 
   std::vector<TraceMesh> Meshes;
   std::vector<TextureView> Textures;

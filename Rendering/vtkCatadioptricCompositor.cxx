@@ -4,6 +4,7 @@
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -40,20 +41,6 @@ struct Triangle
   catar::RasterId Id; // meshIndex * 2^32 + cellId (OutputVisibleTriangle)
 };
 
-// The texture coordinates of a mesh: its active TCoords, else an array "TCoords" or
-// "TextureCoordinates" with 2 components.
-vtkDataArray* TextureCoordinates(vtkPolyData* mesh)
-{
-  vtkDataArray* t = mesh->GetPointData()->GetTCoords();
-  for (const char* name : { "TCoords", "TextureCoordinates" })
-  {
-    if (!t)
-    {
-      t = mesh->GetPointData()->GetArray(name);
-    }
-  }
-  return (t && t->GetNumberOfComponents() >= 2) ? t : nullptr;
-}
 // The bands of RequestData with a depth buffer (depth: width x height floats, top row first, or
 // null) and/or an id buffer (ids: the output array, VTK row order, or null). Each band initialises
 // its own rows of both buffers. In depth mode the opaque triangles come first and write depth; the
@@ -175,19 +162,7 @@ int vtkCatadioptricCompositor::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // The whole frame and whole textures are always needed, whatever the output's extent.
-  for (int port : { 0, 2 })
-  {
-    for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
-    {
-      vtkInformation* info = inputVector[port]->GetInformationObject(i);
-      if (info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-      {
-        int extent[6];
-        info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-        info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
-      }
-    }
-  }
+  vtkCatadioptricImageSupport::RequestWholeExtents(inputVector, { 0, 2 });
   return 1;
 }
 
@@ -290,74 +265,24 @@ int vtkCatadioptricCompositor::RequestData(
   // Background: the frame (grey and RGB widened to RGBA), or a colour.
   if (frame)
   {
-    const unsigned char* in =
-      static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0));
-    const int nc = frameComponents;
-    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        const unsigned char* s = in + nc * i;
-        unsigned char* d = out + 4 * i;
-        if (nc >= 3)
-        {
-          d[0] = s[0];
-          d[1] = s[1];
-          d[2] = s[2];
-          d[3] = nc == 4 ? s[3] : 255;
-        }
-        else
-        {
-          d[0] = d[1] = d[2] = s[0];
-          d[3] = nc == 2 ? s[1] : 255;
-        }
-      }
-    });
+    vtkCatadioptricImageSupport::CopyFrame(
+      static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0)),
+      frameComponents, nPixels, out);
   }
   else
   {
-    unsigned char bg[4];
-    for (int k = 0; k < 4; ++k)
-    {
-      bg[k] = static_cast<unsigned char>(
-        std::lround(255.0 * std::min(1.0, std::max(0.0, this->BackgroundColor[k]))));
-    }
-    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        std::copy(bg, bg + 4, out + 4 * i);
-      }
-    });
+    vtkCatadioptricImageSupport::FillColor(this->BackgroundColor, nPixels, out);
   }
   this->UpdateProgress(0.2);
 
   // Textures (port 2): unsigned char images, 1, 3 or 4 components, row 0 at the bottom.
   std::vector<catar::TextureView> textures;
-  for (int t = 0; t < inputVector[2]->GetNumberOfInformationObjects(); ++t)
+  std::string textureError;
+  if (!vtkCatadioptricImageSupport::ReadTextures(
+        inputVector[2], this->RepeatTextures, textures, textureError))
   {
-    vtkImageData* tex = vtkImageData::GetData(inputVector[2], t);
-    vtkDataArray* texels = tex ? tex->GetPointData()->GetScalars() : nullptr;
-    int tdims[3] = { 0, 0, 0 };
-    if (tex)
-    {
-      tex->GetDimensions(tdims);
-    }
-    if (!texels || texels->GetDataType() != VTK_UNSIGNED_CHAR || tdims[2] != 1 ||
-      tdims[0] < 1 || tdims[1] < 1 ||
-      !(texels->GetNumberOfComponents() == 1 || texels->GetNumberOfComponents() == 3 ||
-        texels->GetNumberOfComponents() == 4))
-    {
-      vtkErrorMacro("Texture " << t << " must be a 2D unsigned char image with 1, 3 or 4 "
-                                      "components.");
-      return 0;
-    }
-    catar::TextureView view;
-    view.data = static_cast<const std::uint8_t*>(texels->GetVoidPointer(0));
-    view.width = tdims[0];
-    view.height = tdims[1];
-    view.channels = texels->GetNumberOfComponents();
-    view.rowStride = static_cast<std::ptrdiff_t>(view.channels) * tdims[0];
-    view.repeat = this->RepeatTextures;
-    textures.push_back(view);
+    vtkErrorMacro(<< textureError);
+    return 0;
   }
   // DEPTH_BUFFER: an RGBA texture is opaque when every alpha byte is 255.
   std::vector<char> opaqueTexture(textures.size(), 1);
@@ -428,8 +353,8 @@ int vtkCatadioptricCompositor::RequestData(
       }
     }
     const catar::RasterId meshKey = static_cast<catar::RasterId>(m) << 32;
-    const float solid[4] = { static_cast<float>(this->Color[0]),
-      static_cast<float>(this->Color[1]), static_cast<float>(this->Color[2]), 1.0f };
+    const float solid[4] = { static_cast<float>(this->Color[0]), static_cast<float>(this->Color[1]),
+      static_cast<float>(this->Color[2]), 1.0f };
     const vtkCatadioptricColorArray color(mesh, this->ColorArrayName, solid);
     if (color.HasArray() && color.GetNumberOfComponents() < 1)
     {
@@ -440,7 +365,8 @@ int vtkCatadioptricCompositor::RequestData(
     // Texture: the one the mesh names in field data (TextureIndex), else the first, when the mesh
     // has texture coordinates.
     // A negative TextureIndex leaves the mesh untextured.
-    vtkDataArray* tcoords = textures.empty() ? nullptr : TextureCoordinates(mesh);
+    vtkDataArray* tcoords =
+      textures.empty() ? nullptr : vtkCatadioptricImageSupport::TextureCoordinates(mesh);
     int texture = -1;
     if (tcoords)
     {
@@ -456,8 +382,8 @@ int vtkCatadioptricCompositor::RequestData(
       }
       else if (texture >= static_cast<int>(textures.size()))
       {
-        vtkErrorMacro("Mesh " << m << " asks for texture " << texture << " but "
-                              << textures.size() << " are connected.");
+        vtkErrorMacro("Mesh " << m << " asks for texture " << texture << " but " << textures.size()
+                              << " are connected.");
         return 0;
       }
     }

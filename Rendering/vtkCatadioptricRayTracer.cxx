@@ -5,6 +5,7 @@
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricLightingSupport.h"
 #include "vtkCellArray.h"
@@ -89,19 +90,6 @@ catar::Vec3 V3(const double v[3])
   return catar::Vec3(v[0], v[1], v[2]);
 }
 
-// The texture coordinates of a mesh, as the compositor finds them.
-vtkDataArray* TextureCoordinates(vtkPolyData* mesh)
-{
-  vtkDataArray* t = mesh->GetPointData()->GetTCoords();
-  for (const char* name : { "TCoords", "TextureCoordinates" })
-  {
-    if (!t)
-    {
-      t = mesh->GetPointData()->GetArray(name);
-    }
-  }
-  return t && t->GetNumberOfComponents() == 2 ? t : nullptr;
-}
 } // namespace
 
 vtkCatadioptricRayTracer::vtkCatadioptricRayTracer()
@@ -204,19 +192,7 @@ int vtkCatadioptricRayTracer::RequestInformation(
 int vtkCatadioptricRayTracer::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  for (int port : { 0, 2 })
-  {
-    for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
-    {
-      vtkInformation* info = inputVector[port]->GetInformationObject(i);
-      if (info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-      {
-        int extent[6];
-        info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-        info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
-      }
-    }
-  }
+  vtkCatadioptricImageSupport::RequestWholeExtents(inputVector, { 0, 2 });
   return 1;
 }
 
@@ -263,8 +239,7 @@ int vtkCatadioptricRayTracer::RequestData(
     }
     frameComponents = scalars->GetNumberOfComponents();
   }
-  else if (this->ImageSize[0] > 0 &&
-    (this->ImageSize[0] != width || this->ImageSize[1] != height))
+  else if (this->ImageSize[0] > 0 && (this->ImageSize[0] != width || this->ImageSize[1] != height))
   {
     vtkErrorMacro("ImageSize " << this->ImageSize[0] << "x" << this->ImageSize[1]
                                << " differs from the camera image " << width << "x" << height
@@ -282,64 +257,23 @@ int vtkCatadioptricRayTracer::RequestData(
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
   if (frame)
   {
-    const auto* in =
-      static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0));
-    const int nc = frameComponents;
-    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        const unsigned char* s = in + nc * i;
-        unsigned char* d = out + 4 * i;
-        d[0] = s[0];
-        d[1] = nc >= 3 ? s[1] : s[0];
-        d[2] = nc >= 3 ? s[2] : s[0];
-        d[3] = nc == 4 ? s[3] : (nc == 2 ? s[1] : 255);
-      }
-    });
+    vtkCatadioptricImageSupport::CopyFrame(
+      static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0)),
+      frameComponents, nPixels, out);
   }
   else
   {
-    unsigned char bg[4];
-    for (int k = 0; k < 4; ++k)
-    {
-      bg[k] = static_cast<unsigned char>(
-        std::lround(255.0 * std::min(1.0, std::max(0.0, this->BackgroundColor[k]))));
-    }
-    vtkSMPTools::For(0, nPixels, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        std::copy(bg, bg + 4, out + 4 * i);
-      }
-    });
+    vtkCatadioptricImageSupport::FillColor(this->BackgroundColor, nPixels, out);
   }
 
   // Textures.
   std::vector<catar::TextureView> textures;
-  for (int t = 0; t < inputVector[2]->GetNumberOfInformationObjects(); ++t)
+  std::string textureError;
+  if (!vtkCatadioptricImageSupport::ReadTextures(
+        inputVector[2], this->RepeatTextures, textures, textureError))
   {
-    vtkImageData* tex = vtkImageData::GetData(inputVector[2], t);
-    vtkDataArray* texels = tex ? tex->GetPointData()->GetScalars() : nullptr;
-    int tdims[3] = { 0, 0, 0 };
-    if (tex)
-    {
-      tex->GetDimensions(tdims);
-    }
-    const int nc = texels ? texels->GetNumberOfComponents() : 0;
-    if (!texels || texels->GetDataType() != VTK_UNSIGNED_CHAR || tdims[2] != 1 || tdims[0] < 1 ||
-      tdims[1] < 1 || !(nc == 1 || nc == 3 || nc == 4))
-    {
-      vtkErrorMacro("Texture " << t << " must be a 2D unsigned char image with 1, 3 or 4 "
-                                      "components.");
-      return 0;
-    }
-    catar::TextureView view;
-    view.data = static_cast<const std::uint8_t*>(texels->GetVoidPointer(0));
-    view.width = tdims[0];
-    view.height = tdims[1];
-    view.channels = nc;
-    view.rowStride = static_cast<std::ptrdiff_t>(nc) * tdims[0];
-    view.repeat = this->RepeatTextures;
-    textures.push_back(view);
+    vtkErrorMacro(<< textureError);
+    return 0;
   }
 
   // Meshes: triangles (polygons as fans), colours, normals, texture coordinates, lighting.
@@ -376,8 +310,9 @@ int vtkCatadioptricRayTracer::RequestData(
       polys->GetCellAtId(c, ids);
       for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
       {
-        tm.triangles.push_back({ static_cast<std::uint32_t>(ids->GetId(0)),
-          static_cast<std::uint32_t>(ids->GetId(k)), static_cast<std::uint32_t>(ids->GetId(k + 1)) });
+        tm.triangles.push_back(
+          { static_cast<std::uint32_t>(ids->GetId(0)), static_cast<std::uint32_t>(ids->GetId(k)),
+            static_cast<std::uint32_t>(ids->GetId(k + 1)) });
         triangleCells.push_back(firstCell + c);
         tm.triangleIds.push_back(original
             ? static_cast<std::int64_t>(original->GetComponent(firstCell + c, 0))
@@ -463,7 +398,7 @@ int vtkCatadioptricRayTracer::RequestData(
     }
     if (!textures.empty())
     {
-      if (vtkDataArray* tcoords = TextureCoordinates(mesh))
+      if (vtkDataArray* tcoords = vtkCatadioptricImageSupport::TextureCoordinates(mesh))
       {
         int texture = 0;
         if (vtkDataArray* index = mesh->GetFieldData()->GetArray("TextureIndex"))

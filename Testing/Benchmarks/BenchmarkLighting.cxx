@@ -4,73 +4,40 @@
 // triangles. Run:
 //   CATAR_SHARED_DATA=../shared/data build/bin/BenchmarkLighting
 //     [--benchmark_out=lighting.csv --benchmark_out_format=csv]
+#include "BenchmarkScene.h"
+
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkNew.h"
-#include "vtkOBJReader.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
-#include "vtkTransform.h"
-#include "vtkTransformPolyDataFilter.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
 #include <string>
 
 namespace
 {
-// The demo camera: at world (0, -0.14, 1), looking along +y at a 5 cm mirror 14 cm away.
-void DemoCamera(vtkCatadioptricCamera* cam)
-{
-  cam->SetImageWidth(1328);
-  cam->SetImageHeight(1048);
-  cam->SetFocalLength(1000, 1000);
-  cam->SetPrincipalPoint(663.5, 523.5);
-  cam->SetMirrorCenter(0, 0, 0.14);
-  cam->SetMirrorRadius(0.05);
-  const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
-  cam->SetWorldToCameraElements(pose);
-}
+using catar_benchmark::DemoCamera;
 
 // The object, placed 25 cm behind the camera, about 15 cm across; name is set to its origin.
 vtkSmartPointer<vtkPolyData> Object(std::string& name)
 {
-  vtkSmartPointer<vtkPolyData> mesh;
-  const char* shared = std::getenv("CATAR_SHARED_DATA");
-  const std::string bunny = shared ? std::string(shared) + "/stanford-bunny.obj" : "";
-  vtkNew<vtkTransform> place;
-  place->PostMultiply();
-  if (!bunny.empty() && vtksys::SystemTools::FileExists(bunny, true))
+  if (vtkSmartPointer<vtkPolyData> bunny = catar_benchmark::SharedBunny())
   {
-    vtkNew<vtkOBJReader> reader;
-    reader->SetFileName(bunny.c_str());
-    reader->Update();
-    mesh = reader->GetOutput();
     name = "bunny";
-    place->Translate(0.017, -0.11, -0.0016); // bounding-box centre to the origin
-    place->RotateX(90);                      // y up -> z up
+    return bunny;
   }
-  else
-  {
-    vtkNew<vtkSphereSource> sphere;
-    sphere->SetRadius(0.075);
-    sphere->SetThetaResolution(264);
-    sphere->SetPhiResolution(134);
-    sphere->Update();
-    mesh = sphere->GetOutput();
-    name = "sphere";
-  }
-  place->Translate(0.0, -0.25, 0.9);
-  vtkNew<vtkTransformPolyDataFilter> xf;
-  xf->SetTransform(place);
-  xf->SetInputData(mesh);
-  xf->Update();
-  return xf->GetOutput();
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.075);
+  sphere->SetThetaResolution(264);
+  sphere->SetPhiResolution(134);
+  sphere->Update();
+  name = "sphere";
+  return catar_benchmark::PlaceInView(sphere->GetOutput(), nullptr);
 }
 
 void BM_Lighting(benchmark::State& state)

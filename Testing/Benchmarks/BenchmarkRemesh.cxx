@@ -8,6 +8,7 @@
 //     [--csv remesh.csv]
 //
 // --quick (CI smoke) runs one target per object and 2 frames.
+#include "BenchmarkScene.h"
 #include "EdgeBend.h"
 
 #include "vtkCatadioptricCamera.h"
@@ -19,7 +20,6 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
-#include "vtkOBJReader.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
@@ -27,7 +27,6 @@
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
 #include "vtkTriangleFilter.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <chrono>
@@ -47,18 +46,7 @@ double Ms(Clock::time_point a, Clock::time_point b)
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-// The demo camera: at world (0, -0.14, 1), looking along +y at a 5 cm mirror 14 cm away.
-void DemoCamera(vtkCatadioptricCamera* cam)
-{
-  cam->SetImageWidth(1328);
-  cam->SetImageHeight(1048);
-  cam->SetFocalLength(1000, 1000);
-  cam->SetPrincipalPoint(663.5, 523.5);
-  cam->SetMirrorCenter(0, 0, 0.14);
-  cam->SetMirrorRadius(0.05);
-  const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
-  cam->SetWorldToCameraElements(pose);
-}
+using catar_benchmark::DemoCamera;
 
 vtkSmartPointer<vtkPolyData> Place(vtkPolyData* mesh, vtkTransform* t)
 {
@@ -85,18 +73,6 @@ vtkSmartPointer<vtkPolyData> Box()
   return Place(box->GetOutput(), t);
 }
 
-vtkSmartPointer<vtkPolyData> Bunny(const std::string& file)
-{
-  vtkNew<vtkOBJReader> reader;
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  vtkNew<vtkTransform> t;
-  t->PostMultiply();
-  t->Translate(0.017, -0.11, -0.0016); // bounding-box centre to the origin
-  t->RotateX(90);                      // y up -> z up
-  t->Translate(0.0, -0.25, 0.9);
-  return Place(reader->GetOutput(), t);
-}
 
 // Largest edge bend (pixels) over the mesh's visible edges.
 double MaximumBend(vtkPolyData* mesh, const catar::SphereProjector& projector)
@@ -195,11 +171,9 @@ int main(int argc, char* argv[])
 
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> objects;
   objects.emplace_back("box", Box());
-  const char* shared = std::getenv("CATAR_SHARED_DATA");
-  const std::string bunny = shared ? std::string(shared) + "/stanford-bunny.obj" : "";
-  if (!bunny.empty() && vtksys::SystemTools::FileExists(bunny, true))
+  if (vtkSmartPointer<vtkPolyData> bunny = catar_benchmark::SharedBunny())
   {
-    objects.emplace_back("bunny", Bunny(bunny));
+    objects.emplace_back("bunny", bunny);
   }
   else
   {

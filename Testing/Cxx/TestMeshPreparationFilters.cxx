@@ -104,14 +104,7 @@ vtkSmartPointer<vtkPolyData> ColouredBox(const double size[3], const double cent
   return mesh;
 }
 
-// The demo camera (README): 1328 x 1048, f = 1000, a 5 cm sphere 14 cm in front.
-vtkSmartPointer<vtkCatadioptricCamera> DemoCamera()
-{
-  auto camera = vtkSmartPointer<vtkCatadioptricCamera>::New();
-  const std::string file = std::string(CATAR_SOURCE_DIR) + "/Data/calibration/demo-camera.yaml";
-  EXPECT_TRUE(camera->Load(file.c_str())) << camera->GetLastError();
-  return camera;
-}
+using catar_test::DemoCamera;
 
 // Largest bend of the mesh's edges seen by the camera, measured here with the VTK camera: the
 // distance from the exact image of each edge's midpoint to the segment between the images of its

@@ -37,13 +37,7 @@
 
 namespace
 {
-vtkSmartPointer<vtkCatadioptricCamera> DemoCamera()
-{
-  auto camera = vtkSmartPointer<vtkCatadioptricCamera>::New();
-  const std::string file = std::string(CATAR_SOURCE_DIR) + "/Data/calibration/demo-camera.yaml";
-  EXPECT_TRUE(camera->Load(file.c_str())) << camera->GetLastError();
-  return camera;
-}
+using catar_test::DemoCamera;
 
 // An axis-aligned box as six quads with outward normals, one colour per face (cell data).
 const std::array<std::array<unsigned char, 3>, 6> kFaceColors = { { { 220, 40, 40 },
@@ -104,8 +98,7 @@ long long VisibleTriangle(vtkImageData* image, int x, int y)
 {
   int dims[3];
   image->GetDimensions(dims);
-  auto* ids =
-    vtkTypeInt64Array::SafeDownCast(image->GetPointData()->GetArray("VisibleTriangle"));
+  auto* ids = vtkTypeInt64Array::SafeDownCast(image->GetPointData()->GetArray("VisibleTriangle"));
   return ids ? ids->GetValue(static_cast<vtkIdType>(dims[1] - 1 - y) * dims[0] + x) : -2;
 }
 } // namespace
@@ -292,8 +285,8 @@ TEST(vtkCatadioptricRayTracer, LightingAndShadowsAreExact)
       const bool inShadow = std::abs(o.x()) < 0.03 && std::abs(o.z() - 1.0) < 0.03;
       EXPECT_EQ(inShadow, (q - shadowed).norm() < 1e-12) << "point " << q.transpose();
       const unsigned char lit = shadows && inShadow ? 0 : 1;
-      const catar::Vec3 expected = catar::Shade(p, catar::Vec3(0, 1, 0), ray.mirrorPoint,
-        sources, material, ambient, &lit, false);
+      const catar::Vec3 expected = catar::Shade(
+        p, catar::Vec3(0, 1, 0), ray.mirrorPoint, sources, material, ambient, &lit, false);
       const unsigned char* rgba = Pixel(image, x, y);
       for (int k = 0; k < 3; ++k)
       {

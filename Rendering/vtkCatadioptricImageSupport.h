@@ -1,0 +1,49 @@
+/**
+ * @class   vtkCatadioptricImageSupport
+ * @brief   input handling shared by the image sinks (compositor and reference ray tracer)
+ *
+ * Not a vtkObject (C++ only, not wrapped). Both sinks take the same inputs (port 0 a camera frame,
+ * port 2 textures, meshes with texture coordinates) and must read them the same way, so that
+ * their images compare pixel by pixel.
+ */
+#ifndef vtkCatadioptricImageSupport_h
+#define vtkCatadioptricImageSupport_h
+
+#include "CatadioptricARRenderingModule.h" // for export macro
+#include "Rasterizer.h"                    // for catar::TextureView
+#include "vtkType.h"                       // for vtkIdType
+
+#include <initializer_list> // for std::initializer_list
+#include <string>           // for std::string
+#include <vector>           // for std::vector
+
+class vtkDataArray;
+class vtkInformationVector;
+class vtkPolyData;
+
+class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricImageSupport
+{
+public:
+  /// RequestUpdateExtent of a sink: asks for the whole extent of every input on `ports`.
+  static void RequestWholeExtents(
+    vtkInformationVector** inputVector, std::initializer_list<int> ports);
+
+  /// Fills `n` RGBA pixels from a frame of `components` (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA)
+  /// unsigned char values per pixel, in parallel.
+  static void CopyFrame(
+    const unsigned char* frame, int components, vtkIdType n, unsigned char* out);
+
+  /// Fills `n` RGBA pixels with a colour given in [0, 1] (clamped), in parallel.
+  static void FillColor(const double rgba[4], vtkIdType n, unsigned char* out);
+
+  /// Views of the textures connected to `textures` (2D unsigned char images of 1, 3 or 4
+  /// components, row 0 at the bottom). False with `error` set when one is not such an image.
+  static bool ReadTextures(vtkInformationVector* textures, bool repeat,
+    std::vector<catar::TextureView>& views, std::string& error);
+
+  /// The texture coordinates of a mesh: its active TCoords, else an array "TCoords" or
+  /// "TextureCoordinates", with at least 2 components; null without.
+  static vtkDataArray* TextureCoordinates(vtkPolyData* mesh);
+};
+
+#endif

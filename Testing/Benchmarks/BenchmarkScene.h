@@ -1,0 +1,71 @@
+// The scene the benchmarks share: the demo camera and the Stanford bunny placed in its view.
+#ifndef catarBenchmarkScene_h
+#define catarBenchmarkScene_h
+
+#include "vtkCatadioptricCamera.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <cstdlib>
+#include <string>
+
+namespace catar_benchmark
+{
+/// The demo camera: at world (0, -0.14, 1), looking along +y at a 5 cm mirror 14 cm away.
+inline void DemoCamera(vtkCatadioptricCamera* cam)
+{
+  cam->SetImageWidth(1328);
+  cam->SetImageHeight(1048);
+  cam->SetFocalLength(1000, 1000);
+  cam->SetPrincipalPoint(663.5, 523.5);
+  cam->SetMirrorCenter(0, 0, 0.14);
+  cam->SetMirrorRadius(0.05);
+  const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
+  cam->SetWorldToCameraElements(pose);
+}
+
+/// Moves `mesh` by `transform` applied after `before` (a transform to the origin, or null): the
+/// objects sit 25 cm behind the camera, at (0, -0.25, 0.9).
+inline vtkSmartPointer<vtkPolyData> PlaceInView(vtkPolyData* mesh, vtkTransform* before)
+{
+  vtkNew<vtkTransform> place;
+  place->PostMultiply();
+  if (before)
+  {
+    place->Concatenate(before);
+  }
+  place->Translate(0.0, -0.25, 0.9);
+  vtkNew<vtkTransformPolyDataFilter> xf;
+  xf->SetTransform(place);
+  xf->SetInputData(mesh);
+  xf->Update();
+  return xf->GetOutput();
+}
+
+/// The Stanford bunny (69,451 triangles, about 15 cm) from CATAR_SHARED_DATA, z up, placed in
+/// view; null when CATAR_SHARED_DATA does not name a folder holding stanford-bunny.obj.
+inline vtkSmartPointer<vtkPolyData> SharedBunny()
+{
+  const char* shared = std::getenv("CATAR_SHARED_DATA");
+  const std::string file = shared ? std::string(shared) + "/stanford-bunny.obj" : "";
+  if (file.empty() || !vtksys::SystemTools::FileExists(file, true))
+  {
+    return nullptr;
+  }
+  vtkNew<vtkOBJReader> reader;
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  vtkNew<vtkTransform> centre;
+  centre->PostMultiply();
+  centre->Translate(0.017, -0.11, -0.0016); // bounding-box centre to the origin
+  centre->RotateX(90);                      // y up -> z up
+  return PlaceInView(reader->GetOutput(), centre);
+}
+} // namespace catar_benchmark
+
+#endif
