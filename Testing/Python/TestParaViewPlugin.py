@@ -28,6 +28,7 @@ def main():
     CatadioptricPainterSort = simple.CatadioptricPainterSort
     CatadioptricEnvironment = simple.CatadioptricEnvironment
     CatadioptricCompositor = simple.CatadioptricCompositor
+    CatadioptricRayTracer = simple.CatadioptricRayTracer
     with tempfile.TemporaryDirectory() as d:
         calib = os.path.join(d, "calibration.yaml")
         with open(calib, "w") as f:
@@ -63,10 +64,23 @@ def main():
         x, y = int(round(px[0])), int(round(px[1]))
         centre = scalars.GetTuple4((dims[1] - 1 - y) * dims[0] + x)
         assert centre == (255.0, 0.0, 255.0, 255.0), (px, centre)
+        # The exact reference of the same sphere: magenta at the same pixel, a similar count.
+        tracer = CatadioptricRayTracer(Frame=frame, Input=[sphere], CalibrationFileName=calib)
+        tracer.ColorArrayName = ""
+        tracer.Color = [1.0, 0.0, 1.0]
+        tracer.UpdatePipeline()
+        exact = servermanager.Fetch(tracer)
+        assert exact.GetDimensions() == dims, exact.GetDimensions()
+        traced = exact.GetPointData().GetScalars()
+        assert traced.GetTuple4((dims[1] - 1 - y) * dims[0] + x) == (255.0, 0.0, 255.0, 255.0)
+        exactMagenta = sum(
+            1 for i in range(traced.GetNumberOfTuples())
+            if traced.GetTuple4(i) == (255.0, 0.0, 255.0, 255.0))
+        assert abs(exactMagenta - magenta) < 0.25 * magenta, (exactMagenta, magenta)
         projected = servermanager.Fetch(projection)
         assert projected.GetPointData().GetArray("ImageCoordinates") is not None
         assert projected.GetCellData().GetArray("CentroidDepth") is not None
-    print("ParaView plugin: %d magenta pixels; 1 passed, 0 failed" % magenta)
+    print("ParaView plugin: %d magenta pixels (ray tracer %d); 1 passed, 0 failed" % (magenta, exactMagenta))
 
 
 if __name__ == "__main__":
