@@ -48,32 +48,6 @@ double Ms(Clock::time_point a, Clock::time_point b)
 
 using catar_benchmark::DemoCamera;
 
-vtkSmartPointer<vtkPolyData> Place(vtkPolyData* mesh, vtkTransform* t)
-{
-  vtkNew<vtkTransformPolyDataFilter> xf;
-  xf->SetTransform(t);
-  xf->SetInputData(mesh);
-  vtkNew<vtkTriangleFilter> tri;
-  tri->SetInputConnection(xf->GetOutputPort());
-  tri->Update();
-  return tri->GetOutput();
-}
-
-// The paper's parallelepiped where the demo puts it, 2 triangles per face.
-vtkSmartPointer<vtkPolyData> Box()
-{
-  vtkNew<vtkTessellatedBoxSource> box;
-  box->SetBounds(-0.15, 0.15, -0.06, 0.06, -0.045, 0.045);
-  box->SetLevel(0);
-  box->Update();
-  vtkNew<vtkTransform> t;
-  t->PostMultiply();
-  t->RotateZ(30);
-  t->Translate(0.14, -0.22, 0.87);
-  return Place(box->GetOutput(), t);
-}
-
-
 // Largest edge bend (pixels) over the mesh's visible edges.
 double MaximumBend(vtkPolyData* mesh, const catar::SphereProjector& projector)
 {
@@ -170,7 +144,7 @@ int main(int argc, char* argv[])
   const catar::SphereProjector projector(camera->GetModel());
 
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> objects;
-  objects.emplace_back("box", Box());
+  objects.emplace_back("box", catar_benchmark::PaperBox());
   if (vtkSmartPointer<vtkPolyData> bunny = catar_benchmark::SharedBunny())
   {
     objects.emplace_back("bunny", bunny);

@@ -7,8 +7,10 @@
 #include "vtkOBJReader.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkTessellatedBoxSource.h"
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
+#include "vtkTriangleFilter.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <cstdlib>
@@ -43,6 +45,25 @@ inline vtkSmartPointer<vtkPolyData> PlaceInView(vtkPolyData* mesh, vtkTransform*
   vtkNew<vtkTransformPolyDataFilter> xf;
   xf->SetTransform(place);
   xf->SetInputData(mesh);
+  xf->Update();
+  return xf->GetOutput();
+}
+
+/// The paper's parallelepiped (30 x 12 x 9 cm) where the demo puts it, 2 triangles per face.
+inline vtkSmartPointer<vtkPolyData> PaperBox()
+{
+  vtkNew<vtkTessellatedBoxSource> box;
+  box->SetBounds(-0.15, 0.15, -0.06, 0.06, -0.045, 0.045);
+  box->SetLevel(0);
+  vtkNew<vtkTriangleFilter> tri;
+  tri->SetInputConnection(box->GetOutputPort());
+  vtkNew<vtkTransform> t;
+  t->PostMultiply();
+  t->RotateZ(30);
+  t->Translate(0.14, -0.22, 0.87);
+  vtkNew<vtkTransformPolyDataFilter> xf;
+  xf->SetTransform(t);
+  xf->SetInputConnection(tri->GetOutputPort());
   xf->Update();
   return xf->GetOutput();
 }

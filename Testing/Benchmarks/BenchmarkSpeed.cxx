@@ -1,0 +1,198 @@
+// The paper's figure 8 redone, and the real-time targets: frames per second of the full per-frame
+// path (projection, Gouraud lighting with a moving spotlight, painter sort, compositing onto a
+// 1328x1048 camera frame) against triangle count, median over --frames frames (default 300),
+// with the time of each stage. Objects: the box remeshed to several sizes and spheres up to a
+// million triangles (always), and the bunny, buddha and dragon when CATAR_SHARED_DATA names the
+// shared data folder. Then, on the bunny (or a sphere of about 70k triangles without it): three
+// spotlights with shadows, the depth buffer, the exact reference renderer, and resident memory
+// over --memory-frames frames (default 1000). Run:
+//   CATAR_SHARED_DATA=../shared/data build/bin/BenchmarkSpeed [--frames N] [--memory-frames N]
+//     [--csv FILE] [--quick]
+// --object NAME keeps only the objects of that name (box, sphere, bunny, happy-buddha-67k, ...).
+// --quick (CI smoke) renders 3 frames of a few small objects.
+#include "BenchmarkScene.h"
+#include "FramePipeline.h"
+
+#include "vtkCatadioptricRayTracer.h"
+#include "vtkCatadioptricRemesher.h"
+#include "vtkPLYReader.h"
+#include "vtkSMPTools.h"
+#include "vtkSphereSource.h"
+
+#include <cstdlib>
+#include <cstring>
+
+namespace
+{
+using namespace catar_benchmark;
+
+struct Object
+{
+  std::string name;
+  vtkSmartPointer<vtkPolyData> mesh;
+};
+
+vtkSmartPointer<vtkPolyData> Sphere(int theta, int phi)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.075);
+  sphere->SetThetaResolution(theta);
+  sphere->SetPhiResolution(phi);
+  sphere->Update();
+  return PlaceInView(sphere->GetOutput(), nullptr);
+}
+
+// The paper's box remeshed to triangles of about `targetArea` square metres (0: as is).
+vtkSmartPointer<vtkPolyData> Box(double targetArea)
+{
+  vtkSmartPointer<vtkPolyData> box = PaperBox();
+  if (targetArea <= 0)
+  {
+    return box;
+  }
+  vtkNew<vtkCatadioptricRemesher> remesher;
+  remesher->SetInputData(box);
+  remesher->SetModeToTargetArea();
+  remesher->SetTargetArea(targetArea);
+  remesher->Update();
+  return remesher->GetOutput();
+}
+
+// A shared PLY model, scaled to about 15 cm, z up, placed in view; null when absent.
+vtkSmartPointer<vtkPolyData> SharedPly(const char* file)
+{
+  const char* shared = std::getenv("CATAR_SHARED_DATA");
+  const std::string path = shared ? std::string(shared) + "/" + file : "";
+  if (path.empty() || !vtksys::SystemTools::FileExists(path, true))
+  {
+    return nullptr;
+  }
+  vtkNew<vtkPLYReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* in = reader->GetOutput();
+  double b[6];
+  in->GetBounds(b);
+  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  vtkNew<vtkTransform> centre;
+  centre->PostMultiply();
+  centre->Translate(-0.5 * (b[0] + b[1]), -0.5 * (b[2] + b[3]), -0.5 * (b[4] + b[5]));
+  centre->Scale(0.15 / size, 0.15 / size, 0.15 / size);
+  centre->RotateX(90); // the Stanford scans stand along +y
+  return PlaceInView(in, centre);
+}
+
+struct Result
+{
+  std::string object, variant;
+  vtkIdType triangles;
+  StageTimes stages;
+  double frameMs;
+};
+
+void PrintRow(const Result& r)
+{
+  std::printf("| %s | %s | %lld | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f |\n", r.object.c_str(),
+    r.variant.c_str(), static_cast<long long>(r.triangles), r.stages.ms[0], r.stages.ms[1],
+    r.stages.ms[2], r.stages.ms[3], r.frameMs, r.frameMs > 0 ? 1e3 / r.frameMs : 0.0);
+  std::fflush(stdout);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  vtkSMPTools::SetBackend("STDThread");
+  int frames = 300;
+  int memoryFrames = 1000;
+  bool quick = false;
+  std::string csv;
+  std::string only; // --object NAME: only the objects of that name
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+    {
+      frames = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (!std::strcmp(argv[i], "--memory-frames") && i + 1 < argc)
+    {
+      memoryFrames = std::max(0, std::atoi(argv[++i]));
+    }
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc)
+    {
+      csv = argv[++i];
+    }
+    else if (!std::strcmp(argv[i], "--object") && i + 1 < argc)
+    {
+      only = argv[++i];
+    }
+    else if (!std::strcmp(argv[i], "--quick"))
+    {
+      quick = true;
+    }
+    else
+    {
+      std::fprintf(stderr,
+        "usage: BenchmarkSpeed [--frames N] [--memory-frames N] [--csv FILE] [--object NAME] "
+        "[--quick]\n");
+      return 2;
+    }
+  }
+  if (quick)
+  {
+    frames = 3;
+    memoryFrames = 10;
+  }
+  vtkNew<vtkCatadioptricCamera> camera;
+  DemoCamera(camera);
+  vtkSmartPointer<vtkImageData> frame = CameraFrame(camera);
+
+  std::vector<Object> objects;
+  objects.push_back({ "box", Box(0) });
+  for (double area : quick ? std::vector<double>{ 1e-4 } : std::vector<double>{ 1e-4, 1e-5, 1e-6 })
+  {
+    objects.push_back({ "box", Box(area) });
+  }
+  const std::vector<std::pair<int, int>> spheres = quick
+    ? std::vector<std::pair<int, int>>{ { 64, 34 } }
+    : std::vector<std::pair<int, int>>{ { 64, 34 }, { 264, 134 }, { 512, 258 }, { 1000, 502 } };
+  for (const auto& s : spheres)
+  {
+    objects.push_back({ "sphere", Sphere(s.first, s.second) });
+  }
+  vtkSmartPointer<vtkPolyData> bunny = SharedBunny();
+  if (bunny)
+  {
+    objects.push_back({ "bunny", bunny });
+  }
+  if (!quick)
+  {
+    for (const char* f : { "happy-buddha-16k.ply", "happy-buddha-67k.ply", "dragon-11k.ply",
+           "dragon-48k.ply", "dragon-203k.ply" })
+    {
+      if (vtkSmartPointer<vtkPolyData> m = SharedPly(f))
+      {
+        objects.push_back({ std::string(f).substr(0, std::strlen(f) - 4), m });
+      }
+    }
+  }
+
+  if (!only.empty())
+  {
+    objects.erase(std::remove_if(objects.begin(), objects.end(),
+                    [&](const Object& o) { return o.name != only; }),
+      objects.end());
+  }
+  std::vector<Result> results;
+  std::printf("Full per-frame path, 1328x1048, median of %d frames (ms):\n\n", frames);
+  std::printf("| object | variant | triangles | projection | lighting | sort | composite | "
+              "frame | fps |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (const Object& o : objects)
+  {
+    FramePipeline pipeline(o.mesh, camera, frame, FrameOptions());
+    Result r{ o.name, "1 spot, gouraud, painter", o.mesh->GetNumberOfPolys(), {}, 0.0 };
+    r.stages = MedianFrame(pipeline, frames, &r.frameMs);
+    PrintRow(r);
+    results.push_back(r);
+  }
+  return 0;
+}
