@@ -49,10 +49,13 @@ public:
   enum Solvers
   {
     QUARTIC = 0,  ///< closed-form quartic + Newton polish (default)
-    ITERATIVE = 1 ///< safeguarded Newton on the planar reflection law
+    ITERATIVE = 1 ///< safeguarded Newton on the reflection quartic from a far-field guess
   };
   ///@{
-  /// Which solver finds each reflection point.
+  /// Which solver finds each vertex's reflection point (both reach the same answer to rounding;
+  /// ITERATIVE is the faster, see BenchmarkProjection). Cell centroids always start from the
+  /// mean of their vertices' reflection points, which the same Newton polish finishes in one or
+  /// two steps.
   vtkSetClampMacro(Solver, int, QUARTIC, ITERATIVE);
   vtkGetMacro(Solver, int);
   void SetSolverToQuartic() { this->SetSolver(QUARTIC); }

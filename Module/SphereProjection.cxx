@@ -235,66 +235,114 @@ namespace
 constexpr double kOnSurfaceTolerance = 1e-12; // |P - C| / R within 1 +- this: touching the mirror
 constexpr double kGrazingCosine = 1e-9;       // cos(incidence) below this: no usable reflection
 
-// The planar reflection law, see SphereProjection.h. Returns h(t) and its derivative.
-// Camera at (a, 0), point at (bx, by), unit circle at the origin.
-inline double ReflectionLaw(double a, double bx, double by, double t, double& dh)
+// tan(x / 2) of the angle x in (-pi, pi] whose cosine and sine are c and s (+inf at x = pi).
+// tan(x / 2) grows with x over (-pi, pi], so angles are compared through it without any
+// inverse trigonometric function.
+inline double TanHalf(double c, double s)
 {
-  const double c = std::cos(t);
-  const double s = std::sin(t);
-  // Components of A - z and B - z along the normal z and the tangent (-s, c).
-  const double an = a * c - 1.0;
-  const double at = -a * s;
-  const double bn = bx * c + by * s - 1.0;
-  const double bt = by * c - bx * s;
-  dh = -2.0 - an / (an * an + at * at) - bn / (bn * bn + bt * bt);
-  // phi_A + phi_B as the argument of the product of the two complex numbers; both angles are in
-  // (-pi/2, pi/2) inside the bracket, so the sum needs no unwrapping.
-  return std::atan2(an * bt + at * bn, an * bn - at * bt);
+  if (c >= 0.0)
+  {
+    return s / (1.0 + c);
+  }
+  return s != 0.0 ? (1.0 - c) / s : std::numeric_limits<double>::infinity();
 }
 
-struct PlanarSolution
+// The reflection quartic of SphereProjection.h in u = tan(t / 2), highest degree first.
+struct ReflectionQuartic
 {
-  double theta = 0.0;
-  bool ok = false;
+  double c[5];
+  ReflectionQuartic(double a, double bx, double by)
+    : c{ by * (a + 1.0), 2.0 * (2.0 * a * bx + a + bx), -6.0 * a * by,
+      2.0 * (a + bx - 2.0 * a * bx), by * (a - 1.0) }
+  {
+  }
+  double operator()(double u, double& derivative) const
+  {
+    return detail::PolyEval(this->c, u, derivative);
+  }
 };
 
-// Safeguarded Newton on h inside [lo, hi], from the start value t.
-PlanarSolution NewtonInBracket(double a, double bx, double by, double t, double lo, double hi)
+// The closed-form step: the root of the quartic (Ferrari) inside [lo, hi] (allowing rounding
+// slack), clamped to it; of several, the one nearest to a root by its Newton step. False if none.
+bool QuarticRootInBracket(const ReflectionQuartic& q, double lo, double hi, double& u)
 {
-  PlanarSolution sol;
-  t = std::min(hi, std::max(lo, t));
+  double roots[4];
+  const int n = detail::SolveQuartic(q.c[0], q.c[1], q.c[2], q.c[3], q.c[4], roots);
+  const double slack = 1e-7 * (1.0 + hi - lo);
+  double best = std::numeric_limits<double>::infinity();
+  bool found = false;
+  for (int i = 0; i < n; ++i)
+  {
+    if (!(roots[i] >= lo - slack && roots[i] <= hi + slack))
+    {
+      continue;
+    }
+    const double r = std::min(hi, std::max(lo, roots[i]));
+    double d = 0.0;
+    const double f = q(r, d);
+    const double step = d != 0.0 ? std::abs(f / d) : (f == 0.0 ? 0.0 : best);
+    if (!found || step < best)
+    {
+      best = step;
+      u = r;
+      found = true;
+    }
+  }
+  return found;
+}
+
+// Safeguarded Newton (bisection fallback) on the quartic inside [lo, hi], from u. Inside the
+// bracket the quartic's only root is the physical reflection (h runs over (-pi, pi) there, and
+// the quartic vanishes where h is 0 or +-pi); should rounding leave no sign change (a root on
+// the bracket's end), the end nearer to zero is the answer. No trigonometric function is called.
+double NewtonInBracket(const ReflectionQuartic& q, double u, double lo, double hi)
+{
+  double d = 0.0;
+  const double flo = q(lo, d);
+  const double fhi = q(hi, d);
+  if (flo == 0.0 || fhi == 0.0 || (flo > 0.0) == (fhi > 0.0))
+  {
+    return std::abs(flo) <= std::abs(fhi) ? lo : hi;
+  }
+  const double sign = flo > 0.0 ? 1.0 : -1.0; // sign * q decreases through the root
+  u = std::min(hi, std::max(lo, u));
   for (int it = 0; it < 100; ++it)
   {
-    double dh = 0.0;
-    const double h = ReflectionLaw(a, bx, by, t, dh);
-    if (h == 0.0)
+    const double g = sign * q(u, d);
+    if (g == 0.0)
     {
       break;
     }
-    // h is decreasing: h > 0 means the root lies above t.
-    if (h > 0.0)
+    if (g > 0.0)
     {
-      lo = t;
+      lo = u;
     }
     else
     {
-      hi = t;
+      hi = u;
     }
-    double tn = t - h / dh;
-    if (!(tn > lo && tn < hi))
+    const double newton = g / (sign * d);
+    if (std::abs(newton) <= 1e-9 * (1.0 + u))
     {
-      tn = 0.5 * (lo + hi);
+      // Converged: Newton's error after a step of size e is about K e^2 (K = |q''/2q'|, of
+      // order one here), far below rounding; taking this last step without evaluating q again
+      // saves an iteration, and a step that lands on a bracket's end must not restart
+      // bisection from there.
+      u = std::min(hi, std::max(lo, u - newton));
+      break;
     }
-    const double step = std::abs(tn - t);
-    t = tn;
-    if (step <= 4e-16 * (1.0 + std::abs(t)) || hi - lo <= 4e-16 * (1.0 + std::abs(t)))
+    double un = u - newton;
+    if (!(un > lo && un < hi))
+    {
+      un = 0.5 * (lo + hi);
+    }
+    u = un;
+    if (hi - lo <= 2e-16 * (1.0 + u))
     {
       break;
     }
   }
-  sol.theta = t;
-  sol.ok = std::isfinite(t);
-  return sol;
+  return u;
 }
 } // namespace
 
@@ -302,72 +350,51 @@ namespace detail
 {
 bool QuarticReflectionAngle(double a, double bx, double by, double lo, double hi, double& theta)
 {
-  double roots[4];
-  const int n = SolveQuartic(by * (a + 1.0), 2.0 * (2.0 * a * bx + a + bx), -6.0 * a * by,
-    2.0 * (a + bx - 2.0 * a * bx), by * (a - 1.0), roots);
-  const double slack = 1e-7 * (1.0 + hi - lo);
-  double bestAbs = std::numeric_limits<double>::infinity();
-  bool found = false;
-  for (int i = 0; i < n; ++i)
+  double u = 0.0;
+  if (!QuarticRootInBracket(ReflectionQuartic(a, bx, by), std::tan(0.5 * lo), std::tan(0.5 * hi), u))
   {
-    const double t = 2.0 * std::atan(roots[i]);
-    if (!(t >= lo - slack && t <= hi + slack))
-    {
-      continue;
-    }
-    double dh = 0.0;
-    const double tc = std::min(hi, std::max(lo, t));
-    const double h = std::abs(ReflectionLaw(a, bx, by, tc, dh));
-    if (h < bestAbs)
-    {
-      bestAbs = h;
-      theta = tc;
-      found = true;
-    }
+    return false;
   }
-  return found;
+  theta = 2.0 * std::atan(u);
+  return true;
 }
-} // namespace detail
 
-namespace
+MirrorFrame::MirrorFrame(const Vec3& centre, double radius)
+  : Centre(centre)
+  , Radius(radius)
 {
-PlanarSolution SolvePlanar(
-  SolverType solver, double a, double bx, double by, double beta, double lo, double hi)
-{
-  double start = 0.5 * beta; // far-field guess
-  if (solver == SolverType::Quartic)
+  if (!centre.allFinite() || !std::isfinite(radius) || !(radius > 0.0))
   {
-    // The closed-form root, polished by the same safeguarded Newton (which converges in one or
-    // two steps from it). Should rounding in Ferrari's method leave no root in the bracket, the
-    // polish starts from the far-field guess instead.
-    double theta = 0.0;
-    if (detail::QuarticReflectionAngle(a, bx, by, lo, hi, theta))
-    {
-      start = theta;
-    }
+    return;
   }
-  return NewtonInBracket(a, bx, by, start, lo, hi);
+  this->InvRadius = 1.0 / radius;
+  const Vec3 A = -centre * this->InvRadius; // camera, sphere-centred, unit radius
+  this->A = A.norm();
+  if (!(this->A > 1.0) || !std::isfinite(this->A))
+  {
+    return;
+  }
+  this->E1 = A / this->A;
+  // alpha_A = acos(1 / a): the camera sees the arc |t| < alpha_A.
+  this->TanHalfAlphaA =
+    TanHalf(1.0 / this->A, std::sqrt((this->A - 1.0) * (this->A + 1.0)) / this->A);
+  this->Valid = true;
 }
-} // namespace
 
-ProjectionStatus SphereReflectionPoint(
-  const Vec3& centre, double radius, const Vec3& point, SolverType solver, Vec3& mirrorPoint)
+ProjectionStatus MirrorFrame::Reflect(
+  const Vec3& point, SolverType solver, Vec3& mirrorPoint, const Vec3* guess) const
 {
   mirrorPoint.setZero();
-  if (!point.allFinite() || !centre.allFinite() || !std::isfinite(radius) || !(radius > 0.0))
+  if (!this->Valid || !point.allFinite())
   {
     return ProjectionStatus::InvalidInput;
   }
-  const double invR = 1.0 / radius;
-  const Vec3 A = -centre * invR; // camera, sphere-centred, unit radius
-  const Vec3 B = (point - centre) * invR;
-  const double a = A.norm();
+  const Vec3 B = (point - this->Centre) * this->InvRadius;
   const double b = B.norm();
-  if (!(a > 1.0) || !std::isfinite(b))
+  if (!std::isfinite(b))
   {
     return ProjectionStatus::InvalidInput;
   }
-  const Vec3 e1 = A / a;
   if (b < 1.0 - kOnSurfaceTolerance)
   {
     return ProjectionStatus::InsideMirror;
@@ -375,15 +402,16 @@ ProjectionStatus SphereReflectionPoint(
   if (b <= 1.0 + kOnSurfaceTolerance)
   {
     // Touching the mirror: the point is its own reflection when the camera sees it.
-    if (A.dot(B / b) > 1.0)
+    if (this->A * this->E1.dot(B / b) > 1.0)
     {
-      mirrorPoint = centre + radius * (B / b);
+      mirrorPoint = this->Centre + this->Radius * (B / b);
       return ProjectionStatus::Valid;
     }
     return ProjectionStatus::HiddenByMirror;
   }
-  const double bx = B.dot(e1);
-  Vec3 perp = B - bx * e1;
+  const double a = this->A;
+  const double bx = B.dot(this->E1);
+  Vec3 perp = B - bx * this->E1;
   double by = perp.norm();
   Vec3 e2;
   if (by > 1e-300 && by > 1e-15 * b)
@@ -394,38 +422,81 @@ ProjectionStatus SphereReflectionPoint(
   {
     // On the camera-mirror axis: any plane through the axis will do.
     by = 0.0;
+    const Vec3& e1 = this->E1;
     e2 = (std::abs(e1.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(e1).normalized();
   }
-  const double beta = std::atan2(by, bx); // in [0, pi]
-  const double alphaA = std::acos(1.0 / a);
-  const double alphaB = std::acos(std::min(1.0, 1.0 / b));
-  const double lo = std::max({ -alphaA, beta - alphaB, 0.0 });
-  const double hi = std::min({ alphaA, beta + alphaB, beta });
-  if (!(std::max(-alphaA, beta - alphaB) < std::min(alphaA, beta + alphaB)) || lo > hi)
+  // The bracket [lo, hi] = [max(beta - alpha_B, 0), min(alpha_A, beta)] with beta the angle of B
+  // and alpha_B = acos(1 / b), in u = tan(t / 2): cosines and sines instead of angles. The point
+  // is hidden by the mirror when beta - alpha_B >= alpha_A (no arc seen by both).
+  const double cosBeta = bx / b;
+  const double sinBeta = by / b;
+  const double cosAlphaB = 1.0 / b;
+  const double sinAlphaB = std::sqrt((b - 1.0) * (b + 1.0)) / b;
+  const double uGap = TanHalf(cosBeta * cosAlphaB + sinBeta * sinAlphaB,
+    sinBeta * cosAlphaB - cosBeta * sinAlphaB); // tan((beta - alpha_B) / 2)
+  if (!(uGap < this->TanHalfAlphaA))
   {
     return ProjectionStatus::HiddenByMirror;
   }
-  const PlanarSolution sol = SolvePlanar(solver, a, bx, by, beta, lo, hi);
-  if (!sol.ok)
+  const double uBeta = TanHalf(cosBeta, sinBeta);
+  const double lo = std::max(uGap, 0.0);
+  const double hi = std::min(this->TanHalfAlphaA, uBeta);
+  const ReflectionQuartic q(a, bx, by);
+  // Far-field guess t = beta / 2: tan(beta / 4) from tan(beta / 2).
+  double start = std::isfinite(uBeta) ? uBeta / (1.0 + std::sqrt(1.0 + uBeta * uBeta)) : 1.0;
+  if (guess)
+  {
+    // A nearby reflection point: its angle in this point's plane (tan of the half angle from
+    // the unnormalised direction).
+    const Vec3 d = *guess - this->Centre;
+    const double gc = d.dot(this->E1);
+    const double gs = d.dot(e2);
+    const double gn = std::sqrt(gc * gc + gs * gs);
+    if (gn > 0.0 && std::isfinite(gn))
+    {
+      start = TanHalf(gc / gn, gs / gn);
+    }
+  }
+  else if (solver == SolverType::Quartic)
+  {
+    // The closed-form root, polished by the same safeguarded Newton (which converges in one or
+    // two steps from it). Should rounding in Ferrari's method leave no root in the bracket, the
+    // polish starts from the far-field guess instead.
+    double root = 0.0;
+    if (QuarticRootInBracket(q, lo, hi, root))
+    {
+      start = root;
+    }
+  }
+  const double u = NewtonInBracket(q, start, lo, hi);
+  if (!std::isfinite(u))
   {
     return ProjectionStatus::NoReflection;
   }
-  const double c = std::cos(sol.theta);
-  const double s = std::sin(sol.theta);
+  const double w = 1.0 / (1.0 + u * u);
+  const double c = (1.0 - u * u) * w;
+  const double s = 2.0 * u * w;
   // Grazing test: cosine of the incidence angle at the camera side.
   const double an = a * c - 1.0;
   const double at = -a * s;
-  const double cosInc = an / std::sqrt(an * an + at * at);
-  if (!(cosInc > kGrazingCosine))
+  if (!(an > kGrazingCosine * std::sqrt(an * an + at * at)))
   {
     return ProjectionStatus::NoReflection;
   }
-  mirrorPoint = centre + radius * (c * e1 + s * e2);
+  mirrorPoint = this->Centre + this->Radius * (c * this->E1 + s * e2);
   return ProjectionStatus::Valid;
+}
+} // namespace detail
+
+ProjectionStatus SphereReflectionPoint(
+  const Vec3& centre, double radius, const Vec3& point, SolverType solver, Vec3& mirrorPoint)
+{
+  return detail::MirrorFrame(centre, radius).Reflect(point, solver, mirrorPoint);
 }
 
 SphereProjector::SphereProjector(const CameraModel& model)
   : Model(model)
+  , Frame(model.mirror.center, model.mirror.radius)
 {
   this->Error = model.Validate();
   this->Valid = this->Error.empty();
@@ -435,6 +506,22 @@ SphereProjector::SphereProjector(const CameraModel& model)
 
 ProjectedPoint SphereProjector::ProjectCamera(const Vec3& p, SolverType solver) const
 {
+  return this->ProjectCameraFrom(p, solver, nullptr);
+}
+
+ProjectedPoint SphereProjector::ProjectWorldNear(
+  const Vec3& pWorld, const Vec3& mirrorGuess) const
+{
+  if (!pWorld.allFinite() || !mirrorGuess.allFinite())
+  {
+    return this->ProjectWorld(pWorld, SolverType::Iterative);
+  }
+  return this->ProjectCameraFrom(this->R * pWorld + this->T, SolverType::Iterative, &mirrorGuess);
+}
+
+ProjectedPoint SphereProjector::ProjectCameraFrom(
+  const Vec3& p, SolverType solver, const Vec3* mirrorGuess) const
+{
   ProjectedPoint out;
   if (!this->Valid || !p.allFinite())
   {
@@ -442,8 +529,7 @@ ProjectedPoint SphereProjector::ProjectCamera(const Vec3& p, SolverType solver) 
     return out;
   }
   Vec3 r;
-  const ProjectionStatus s =
-    SphereReflectionPoint(this->Model.mirror.center, this->Model.mirror.radius, p, solver, r);
+  const ProjectionStatus s = this->Frame.Reflect(p, solver, r, mirrorGuess);
   if (s != ProjectionStatus::Valid)
   {
     out.status = s;
