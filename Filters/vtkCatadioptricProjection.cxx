@@ -207,10 +207,19 @@ int vtkCatadioptricProjection::RequestData(
     double* pl = path->GetPointer(0);
     unsigned char* st = status->GetPointer(0);
     unsigned char* vi = pvis->GetPointer(0);
+    const bool coherent = solver == catar::SolverType::Iterative;
     vtkSMPTools::For(0, nPts, [&](vtkIdType begin, vtkIdType end) {
+      // ITERATIVE starts each point's Newton at the previous point's reflection (points that
+      // follow each other in a mesh are mostly neighbours), falling back to the far-field guess.
+      catar::Vec3 previous = catar::Vec3::Zero();
+      bool havePrevious = false;
       for (vtkIdType i = begin; i < end; ++i)
       {
-        const catar::ProjectedPoint q = projector.ProjectWorld(points(i), solver);
+        const catar::ProjectedPoint q = coherent && havePrevious
+          ? projector.ProjectWorldNear(points(i), previous)
+          : projector.ProjectWorld(points(i), solver);
+        havePrevious = catar::HasProjection(q.status);
+        previous = q.mirrorPoint;
         px[2 * i] = q.pixel.x();
         px[2 * i + 1] = q.pixel.y();
         mp[3 * i] = q.mirrorPoint.x();

@@ -52,10 +52,12 @@ public:
     ITERATIVE = 1 ///< safeguarded Newton on the reflection quartic from a far-field guess
   };
   ///@{
-  /// Which solver finds each vertex's reflection point (both reach the same answer to rounding;
-  /// ITERATIVE is the faster, see BenchmarkProjection). Cell centroids always start from the
-  /// mean of their vertices' reflection points, which the same Newton polish finishes in one or
-  /// two steps.
+  /// Which solver finds each vertex's reflection point. Both end with the same safeguarded
+  /// Newton and reach the same answer to rounding: QUARTIC starts it at Ferrari's closed-form
+  /// root (the paper's method); ITERATIVE at the previous vertex's reflection point (vertices
+  /// that follow each other in a mesh are mostly neighbours), else at a far-field guess, and is
+  /// the faster (see BenchmarkProjection, BenchmarkSpeed). Cell centroids always start at the
+  /// mean of their vertices' reflection points and need one or two steps.
   vtkSetClampMacro(Solver, int, QUARTIC, ITERATIVE);
   vtkGetMacro(Solver, int);
   void SetSolverToQuartic() { this->SetSolver(QUARTIC); }

@@ -293,22 +293,16 @@ bool QuarticRootInBracket(const ReflectionQuartic& q, double lo, double hi, doub
 
 // Safeguarded Newton (bisection fallback) on the quartic inside [lo, hi], from u. Inside the
 // bracket the quartic's only root is the physical reflection (h runs over (-pi, pi) there, and
-// the quartic vanishes where h is 0 or +-pi); should rounding leave no sign change (a root on
-// the bracket's end), the end nearer to zero is the answer. No trigonometric function is called.
+// the quartic vanishes where h is 0 or +-pi), and the quartic has the sign of sin(h) (it is a
+// positive multiple of it: both are positive at u = 0 for by > 0), so it decreases through the
+// root as h does; no end needs evaluating. No trigonometric function is called.
 double NewtonInBracket(const ReflectionQuartic& q, double u, double lo, double hi)
 {
   double d = 0.0;
-  const double flo = q(lo, d);
-  const double fhi = q(hi, d);
-  if (flo == 0.0 || fhi == 0.0 || (flo > 0.0) == (fhi > 0.0))
-  {
-    return std::abs(flo) <= std::abs(fhi) ? lo : hi;
-  }
-  const double sign = flo > 0.0 ? 1.0 : -1.0; // sign * q decreases through the root
   u = std::min(hi, std::max(lo, u));
   for (int it = 0; it < 100; ++it)
   {
-    const double g = sign * q(u, d);
+    const double g = q(u, d);
     if (g == 0.0)
     {
       break;
@@ -321,7 +315,7 @@ double NewtonInBracket(const ReflectionQuartic& q, double u, double lo, double h
     {
       hi = u;
     }
-    const double newton = g / (sign * d);
+    const double newton = g / d;
     if (std::abs(newton) <= 1e-9 * (1.0 + u))
     {
       // Converged: Newton's error after a step of size e is about K e^2 (K = |q''/2q'|, of
@@ -425,6 +419,49 @@ ProjectionStatus MirrorFrame::Reflect(
     const Vec3& e1 = this->E1;
     e2 = (std::abs(e1.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(e1).normalized();
   }
+  if (guess)
+  {
+    // Started next to the answer: plain Newton, accepted when it converges within a few steps
+    // to a point that both the camera and B see (an > 0, bn > 0) with 0 <= t <= beta (bt >= 0).
+    // That arc is the bracket below, where the root is unique, so this is the physical
+    // reflection; otherwise the safeguarded search below decides.
+    const Vec3 d = *guess - this->Centre;
+    const double gc = d.dot(this->E1);
+    const double gs = d.dot(e2);
+    const double gn = std::sqrt(gc * gc + gs * gs);
+    if (gn > 0.0 && gc > -0.5 * gn && std::isfinite(gn))
+    {
+      const ReflectionQuartic q(a, bx, by);
+      double u = gs / (gn + gc); // tan(t/2) of the guess's angle
+      bool converged = false;
+      for (int it = 0; it < 4; ++it)
+      {
+        double dq = 0.0;
+        const double step = q(u, dq) / dq;
+        u -= step;
+        if (std::abs(step) <= 1e-9 * (1.0 + std::abs(u)))
+        {
+          converged = true;
+          break;
+        }
+      }
+      if (converged && u >= 0.0)
+      {
+        const double w = 1.0 / (1.0 + u * u);
+        const double c = (1.0 - u * u) * w;
+        const double s = 2.0 * u * w;
+        const double an = a * c - 1.0;
+        const double at = -a * s;
+        const double bn = bx * c + by * s - 1.0;
+        const double bt = by * c - bx * s;
+        if (an > kGrazingCosine * std::sqrt(an * an + at * at) && bn > 0.0 && bt >= 0.0)
+        {
+          mirrorPoint = this->Centre + this->Radius * (c * this->E1 + s * e2);
+          return ProjectionStatus::Valid;
+        }
+      }
+    }
+  }
   // The bracket [lo, hi] = [max(beta - alpha_B, 0), min(alpha_A, beta)] with beta the angle of B
   // and alpha_B = acos(1 / b), in u = tan(t / 2): cosines and sines instead of angles. The point
   // is hidden by the mirror when beta - alpha_B >= alpha_A (no arc seen by both).
@@ -444,20 +481,7 @@ ProjectionStatus MirrorFrame::Reflect(
   const ReflectionQuartic q(a, bx, by);
   // Far-field guess t = beta / 2: tan(beta / 4) from tan(beta / 2).
   double start = std::isfinite(uBeta) ? uBeta / (1.0 + std::sqrt(1.0 + uBeta * uBeta)) : 1.0;
-  if (guess)
-  {
-    // A nearby reflection point: its angle in this point's plane (tan of the half angle from
-    // the unnormalised direction).
-    const Vec3 d = *guess - this->Centre;
-    const double gc = d.dot(this->E1);
-    const double gs = d.dot(e2);
-    const double gn = std::sqrt(gc * gc + gs * gs);
-    if (gn > 0.0 && std::isfinite(gn))
-    {
-      start = TanHalf(gc / gn, gs / gn);
-    }
-  }
-  else if (solver == SolverType::Quartic)
+  if (solver == SolverType::Quartic && !guess)
   {
     // The closed-form root, polished by the same safeguarded Newton (which converges in one or
     // two steps from it). Should rounding in Ferrari's method leave no root in the bracket, the

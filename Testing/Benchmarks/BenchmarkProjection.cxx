@@ -1,4 +1,4 @@
-// Forward-projection cost per point of each solver, back-projection cost per pixel, and raster
+// Forward-projection cost per point of each solver (and from a nearby point's reflection), back-projection cost per pixel, and raster
 // cost per triangle, single-threaded. Run:
 //   build/bin/BenchmarkProjection [--benchmark_out=projection.csv --benchmark_out_format=csv]
 // The counter ns_per_item is the cost of one point / pixel / triangle.
@@ -58,6 +58,32 @@ void BM_ForwardProjection(benchmark::State& state)
   SetPerItem(state, pts.size());
 }
 BENCHMARK(BM_ForwardProjection)->Arg(0)->Arg(1);
+
+// Projection started from a nearby reflection point (what vtkCatadioptricProjection does for the
+// cells' centroids and, with the iterative solver, for each vertex after the first): the guess
+// is the reflection point of a point `range(0)` tenths of a millimetre away.
+void BM_ForwardProjectionNear(benchmark::State& state)
+{
+  const double offset = 1e-4 * static_cast<double>(state.range(0));
+  state.SetLabel("start " + std::to_string(offset * 1e3) + " mm away");
+  const CameraModel model = DemoScene().camera;
+  const SphereProjector proj(model);
+  const std::vector<Vec3> pts = ScenePoints(model, 4096);
+  std::vector<Vec3> guesses;
+  for (const Vec3& p : pts)
+  {
+    guesses.push_back(proj.ProjectWorld(p + Vec3(offset, -offset, offset)).mirrorPoint);
+  }
+  for (auto _ : state)
+  {
+    for (size_t i = 0; i < pts.size(); ++i)
+    {
+      benchmark::DoNotOptimize(proj.ProjectWorldNear(pts[i], guesses[i]));
+    }
+  }
+  SetPerItem(state, pts.size());
+}
+BENCHMARK(BM_ForwardProjectionNear)->Arg(10)->Arg(100);
 
 void BM_BackProjection(benchmark::State& state)
 {

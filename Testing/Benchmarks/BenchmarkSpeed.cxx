@@ -85,6 +85,31 @@ struct Result
   double frameMs;
 };
 
+bool WriteCsv(const std::string& file, const std::vector<Result>& results)
+{
+  if (file.empty())
+  {
+    return true;
+  }
+  std::ofstream out(file);
+  out << "object,variant,triangles,projection_ms,lighting_ms,sort_ms,composite_ms,frame_ms,fps\n";
+  for (const Result& r : results)
+  {
+    out << r.object << ",\"" << r.variant << "\"," << r.triangles;
+    for (double ms : r.stages.ms)
+    {
+      out << "," << ms;
+    }
+    out << "," << r.frameMs << "," << (r.frameMs > 0 ? 1e3 / r.frameMs : 0.0) << "\n";
+  }
+  if (!out)
+  {
+    std::fprintf(stderr, "cannot write %s\n", file.c_str());
+    return false;
+  }
+  return true;
+}
+
 void PrintRow(const Result& r)
 {
   std::printf("| %s | %s | %lld | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f |\n", r.object.c_str(),
@@ -155,7 +180,8 @@ int main(int argc, char* argv[])
   {
     objects.emplace_back("sphere", [s] { return Sphere(s.first, s.second); });
   }
-  objects.emplace_back("bunny", [] { return SharedBunny(); });
+  vtkSmartPointer<vtkPolyData> bunny = SharedBunny();
+  objects.emplace_back("bunny", [bunny] { return bunny; });
   if (!quick)
   {
     for (const char* f : { "happy-buddha-16k.ply", "happy-buddha-67k.ply", "dragon-11k.ply",
@@ -180,11 +206,105 @@ int main(int argc, char* argv[])
     {
       continue; // a shared model that is not there
     }
-    FramePipeline pipeline(mesh, camera, frame, FrameOptions());
-    Result r{ o.first, "1 spot, gouraud, painter", mesh->GetNumberOfPolys(), {}, 0.0 };
+    FrameOptions options;
+    options.solver = vtkCatadioptricProjection::ITERATIVE;
+    FramePipeline pipeline(mesh, camera, frame, options);
+    Result r{ o.first, "1 spot, gouraud, painter, iterative", mesh->GetNumberOfPolys(), {}, 0.0 };
     r.stages = MedianFrame(pipeline, frames, &r.frameMs);
     PrintRow(r);
     results.push_back(r);
   }
-  return 0;
+
+  // The targets, on the bunny (or, without the shared data, a sphere of the same size).
+  std::string name = "bunny";
+  vtkSmartPointer<vtkPolyData> target = bunny ? bunny : nullptr;
+  if (!target)
+  {
+    name = "sphere";
+    target = Sphere(264, 134);
+  }
+  if (!only.empty() && only != name)
+  {
+    return WriteCsv(csv, results) ? 0 : 1;
+  }
+  std::printf("\nVariants on the %s (%lld triangles), median of %d frames (ms):\n\n", name.c_str(),
+    static_cast<long long>(target->GetNumberOfPolys()), frames);
+  std::printf("| object | variant | triangles | projection | lighting | sort | composite | "
+              "frame | fps |\n|---|---|---|---|---|---|---|---|---|\n");
+  struct Variant
+  {
+    const char* label;
+    FrameOptions options;
+  };
+  std::vector<Variant> variants(5);
+  variants[0].label = "1 spot, gouraud, painter, quartic";
+  variants[1].label = "1 spot, gouraud, painter, iterative";
+  variants[1].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variants[2].label = "3 spots, shadows, gouraud, painter, iterative";
+  variants[2].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variants[2].options.lights = 3;
+  variants[2].options.shadows = true;
+  variants[3].label = "1 spot, flat, painter, iterative";
+  variants[3].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variants[3].options.shading = vtkCatadioptricLighting::FLAT;
+  variants[4].label = "1 spot, gouraud, depth buffer, iterative";
+  variants[4].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variants[4].options.visibility = vtkCatadioptricCompositor::DEPTH_BUFFER;
+  for (const Variant& v : variants)
+  {
+    FramePipeline pipeline(target, camera, frame, v.options);
+    Result r{ name, v.label, target->GetNumberOfPolys(), {}, 0.0 };
+    r.stages = MedianFrame(pipeline, frames, &r.frameMs);
+    PrintRow(r);
+    results.push_back(r);
+  }
+
+  // The exact reference renderer on the same scene (one ray per pixel), a moving spotlight.
+  {
+    FramePipeline pipeline(target, camera, frame, FrameOptions());
+    vtkNew<vtkCatadioptricRayTracer> tracer;
+    tracer->SetCamera(camera);
+    tracer->SetFrameData(frame);
+    tracer->AddMeshData(target);
+    tracer->SetMeshLighting(0, pipeline.GetLighting());
+    tracer->Update(); // rays and the ray scene are built once
+    const int tracerFrames = std::max(1, std::min(frames, quick ? 2 : 30));
+    std::vector<double> times;
+    for (int f = 1; f <= tracerFrames; ++f)
+    {
+      pipeline.MoveLights(f);
+      tracer->Modified();
+      const auto t0 = Clock::now();
+      tracer->Update();
+      times.push_back(Ms(t0, Clock::now()));
+    }
+    Result r{ name, "exact reference renderer (1 ray per pixel)", target->GetNumberOfPolys(), {},
+      Median(times) };
+    r.stages.ms = { 0, 0, 0, r.frameMs };
+    std::printf("| %s | %s | %lld | | | | | %.2f | %.1f |\n", r.object.c_str(), r.variant.c_str(),
+      static_cast<long long>(r.triangles), r.frameMs, 1e3 / r.frameMs);
+    results.push_back(r);
+  }
+
+  // Memory: resident size after a warm-up and after memoryFrames more frames.
+  if (memoryFrames > 0)
+  {
+    FrameOptions options;
+    options.solver = vtkCatadioptricProjection::ITERATIVE;
+    FramePipeline pipeline(target, camera, frame, options);
+    for (int f = 0; f < 20; ++f)
+    {
+      pipeline.Frame(f);
+    }
+    const double before = ResidentMiB();
+    for (int f = 0; f < memoryFrames; ++f)
+    {
+      pipeline.Frame(20 + f);
+    }
+    const double after = ResidentMiB();
+    std::printf("\nResident memory: %.1f MiB after 20 frames, %.1f MiB after %d more "
+                "(%+.1f MiB, %+.2f KiB per frame)\n",
+      before, after, memoryFrames, after - before, 1024.0 * (after - before) / memoryFrames);
+  }
+  return WriteCsv(csv, results) ? 0 : 1;
 }
