@@ -169,6 +169,46 @@ TEST(SphereProjection, RandomValidPointsSatisfyTheReflectionLaw)
   }
 }
 
+TEST(SphereProjection, StartingNearbyGivesTheSameAnswer)
+{
+  // ProjectWorldNear: a guess next to the answer, far from it, on the far side of the mirror,
+  // at the centre or NaN changes the work, never the result or the status.
+  std::mt19937_64 rng(99);
+  for (const Geometry& g : Geometries())
+  {
+    SCOPED_TRACE(g.name);
+    const SphereProjector proj(g.model);
+    const Vec3 c = g.model.mirror.center;
+    const double R = g.model.mirror.radius;
+    double worst = 0.0;
+    int valid = 0;
+    for (int i = 0; i < 20000; ++i)
+    {
+      std::uniform_real_distribution<double> logd(std::log(0.5), std::log(200.0));
+      const Vec3 pCam = c + R * std::exp(logd(rng)) * RandomUnit(rng);
+      const Vec3 pWorld = g.model.CameraToWorld(pCam);
+      const ProjectedPoint ref = proj.ProjectWorld(pWorld, SolverType::Iterative);
+      const Vec3 nearby =
+        proj.ProjectWorld(g.model.CameraToWorld(pCam + 1e-3 * R * RandomUnit(rng))).mirrorPoint;
+      const Vec3 antipode = 2.0 * c - ref.mirrorPoint;
+      const Vec3 guesses[] = { nearby, ref.mirrorPoint, c + R * RandomUnit(rng), antipode, c,
+        Vec3::Constant(std::numeric_limits<double>::quiet_NaN()) };
+      for (const Vec3& guess : guesses)
+      {
+        const ProjectedPoint q = proj.ProjectWorldNear(pWorld, guess);
+        ASSERT_EQ(q.status, ref.status);
+        ASSERT_TRUE(q.mirrorPoint.allFinite() && q.pixel.allFinite());
+        worst = std::max(worst, (q.mirrorPoint - ref.mirrorPoint).norm() / R);
+      }
+      valid += HasProjection(ref.status);
+    }
+    EXPECT_GT(valid, 1000);
+    EXPECT_LE(worst, 1e-12);
+    std::printf("[%s] started nearby or anywhere: worst difference %.2e R\n", g.name.c_str(),
+      worst);
+  }
+}
+
 TEST(SphereProjection, StatusesAreConsistentAndNeverNaN)
 {
   // Every random point, valid or not, gets a status; non-projections carry zeros.
