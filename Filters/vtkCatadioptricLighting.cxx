@@ -8,9 +8,11 @@
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
+#include "vtkCatadioptricPointReader.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
@@ -380,19 +382,30 @@ int vtkCatadioptricLighting::RequestData(
     }
     colors->SetNumberOfTuples(nPts);
     unsigned char* out = colors->GetPointer(0);
+    // The projection's arrays (uint8 Visible, double MirrorPoint) are read directly.
+    const vtkCatadioptricPointReader points(input->GetPoints());
+    auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(pointVisible);
+    auto* mirrorDoubles = vtkDoubleArray::SafeDownCast(mirror);
     vtkSMPTools::For(0, nPts, [&](vtkIdType b, vtkIdType e) {
       std::vector<unsigned char> lit(lights.size(), 1);
       for (vtkIdType i = b; i < e; ++i)
       {
         unsigned char* o = out + 4 * i;
-        if (pointVisible->GetComponent(i, 0) == 0)
+        if (visibleBytes ? visibleBytes->GetValue(i) == 0 : pointVisible->GetComponent(i, 0) == 0)
         {
           std::fill(o, o + 4, 0);
           continue;
         }
-        double p[3], mp[3], nn[3];
-        input->GetPoint(i, p);
-        mirror->GetTuple(i, mp);
+        double mp[3], nn[3];
+        if (mirrorDoubles && mirror->GetNumberOfComponents() == 3)
+        {
+          std::copy(mirrorDoubles->GetPointer(3 * i), mirrorDoubles->GetPointer(3 * i) + 3, mp);
+        }
+        else
+        {
+          mirror->GetTuple(i, mp);
+        }
+        const catar::Vec3 p = points(i);
         catar::Vec3 n;
         if (normals.empty())
         {
@@ -412,7 +425,7 @@ int vtkCatadioptricLighting::RequestData(
         {
           std::copy(&pointBase[4 * i], &pointBase[4 * i] + 4, rgba);
         }
-        const catar::Vec3 c = shade(V3(p), n, model.CameraToWorld(V3(mp)), rgba, lit);
+        const catar::Vec3 c = shade(p, n, model.CameraToWorld(V3(mp)), rgba, lit);
         o[0] = ToByte(c.x());
         o[1] = ToByte(c.y());
         o[2] = ToByte(c.z());

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkCatadioptricPainterSort);
@@ -106,7 +107,19 @@ vtkSmartPointer<vtkCellArray> Reordered(
     for (vtkIdType i = b; i < e; ++i)
     {
       const vtkIdType c = order[i];
-      std::copy(conn + off[c], conn + off[c + 1], outConn + outOff[i]);
+      const auto* from = conn + off[c];
+      auto* to = outConn + outOff[i];
+      const auto size = off[c + 1] - off[c];
+      if (size == 3) // triangles, inline
+      {
+        to[0] = from[0];
+        to[1] = from[1];
+        to[2] = from[2];
+      }
+      else
+      {
+        std::copy(from, from + size, to);
+      }
     }
   });
   auto polys = vtkSmartPointer<vtkCellArray>::New();
@@ -133,12 +146,26 @@ void GatherCellData(vtkCellData* in, vtkCellData* out, const std::vector<vtkIdTy
         static_cast<std::size_t>(src->GetNumberOfComponents()) * src->GetDataTypeSize();
       const auto* from = static_cast<const unsigned char*>(src->GetVoidPointer(0));
       auto* to = static_cast<unsigned char*>(dst->GetVoidPointer(0));
-      vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-        for (vtkIdType i = b; i < e; ++i)
-        {
-          std::memcpy(to + i * bytes, from + source[i] * bytes, bytes);
-        }
-      });
+      // Tuples of a size known at compile time are copied inline, not by a call per tuple.
+      auto gather = [&](auto size) {
+        constexpr std::size_t B = decltype(size)::value;
+        const std::size_t width = B ? B : bytes;
+        vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+          for (vtkIdType i = b; i < e; ++i)
+          {
+            std::memcpy(to + i * width, from + source[i] * width, B ? B : width);
+          }
+        });
+      };
+      switch (bytes)
+      {
+        case 1: gather(std::integral_constant<std::size_t, 1>()); break;
+        case 4: gather(std::integral_constant<std::size_t, 4>()); break;
+        case 8: gather(std::integral_constant<std::size_t, 8>()); break;
+        case 12: gather(std::integral_constant<std::size_t, 12>()); break;
+        case 24: gather(std::integral_constant<std::size_t, 24>()); break;
+        default: gather(std::integral_constant<std::size_t, 0>()); break;
+      }
     }
     else
     {

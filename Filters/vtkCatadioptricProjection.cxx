@@ -4,11 +4,11 @@
 #include "SphereProjection.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricPointReader.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -25,50 +25,11 @@ vtkStandardNewMacro(vtkCatadioptricProjection);
 
 namespace
 {
-// Read access to the input's points without a virtual call per point: float and double AOS
-// arrays (what readers and sources make) are read directly, anything else through vtkPoints.
-class PointReader
-{
-public:
-  explicit PointReader(vtkPoints* points)
-    : Points(points)
-  {
-    vtkDataArray* data = points->GetData();
-    if (auto* d = vtkDoubleArray::SafeDownCast(data))
-    {
-      this->Doubles = d->GetPointer(0);
-    }
-    else if (auto* f = vtkFloatArray::SafeDownCast(data))
-    {
-      this->Floats = f->GetPointer(0);
-    }
-  }
-  catar::Vec3 operator()(vtkIdType i) const
-  {
-    if (this->Doubles)
-    {
-      return catar::Vec3(this->Doubles[3 * i], this->Doubles[3 * i + 1], this->Doubles[3 * i + 2]);
-    }
-    if (this->Floats)
-    {
-      return catar::Vec3(this->Floats[3 * i], this->Floats[3 * i + 1], this->Floats[3 * i + 2]);
-    }
-    double p[3];
-    this->Points->GetPoint(i, p);
-    return catar::Vec3(p[0], p[1], p[2]);
-  }
-
-private:
-  vtkPoints* Points;
-  const double* Doubles = nullptr;
-  const float* Floats = nullptr;
-};
-
 // Projects the polygons' centroids and decides cell visibility; runs over a range of polygons.
 struct CellWorker
 {
   const catar::SphereProjector* Projector;
-  const PointReader* Points;
+  const vtkCatadioptricPointReader* Points;
   const unsigned char* PointVisible;
   const double* Pixels;
   const double* MirrorPoints; // the vertices' reflection points: where the centroids' start
@@ -201,7 +162,7 @@ int vtkCatadioptricProjection::RequestData(
   this->UpdateProgress(0.0);
   if (nPts > 0)
   {
-    const PointReader points(input->GetPoints());
+    const vtkCatadioptricPointReader points(input->GetPoints());
     double* px = pixels->GetPointer(0);
     double* mp = mirror->GetPointer(0);
     double* pl = path->GetPointer(0);
@@ -259,7 +220,7 @@ int vtkCatadioptricProjection::RequestData(
   }
   if (input->GetNumberOfPolys() > 0 && nPts > 0)
   {
-    const PointReader points(input->GetPoints());
+    const vtkCatadioptricPointReader points(input->GetPoints());
     CellWorker worker;
     worker.Projector = &projector;
     worker.Points = &points;

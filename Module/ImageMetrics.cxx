@@ -498,8 +498,8 @@ bool CountTriangleDifferences(
   {
     for (int x = 0; x < a.width; ++x)
     {
-      const std::int64_t ia = a.at(x, y);
-      const std::int64_t ib = b.at(x, y);
+      const RasterId ia = a.at(x, y);
+      const RasterId ib = b.at(x, y);
       if (ia >= 0 && ib >= 0)
       {
         ++compared;

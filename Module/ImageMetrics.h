@@ -70,13 +70,13 @@ inline ConstImageView AsConstView(const ImageView& view)
 /// Valid iff data != nullptr, width > 0, height > 0 and |rowStride| >= width.
 struct TriangleIdView
 {
-  const std::int64_t* data = nullptr; ///< address of the id of pixel (0, 0)
+  const RasterId* data = nullptr; ///< address of the id of pixel (0, 0)
   int width = 0;                      ///< number of columns
   int height = 0;                     ///< number of rows
   std::ptrdiff_t rowStride = 0;       ///< elements from row y to row y+1 (may be negative)
 
   /// Id of pixel (x, y); no bounds check.
-  std::int64_t at(int x, int y) const
+  RasterId at(int x, int y) const
   {
     return data[y * rowStride + static_cast<std::ptrdiff_t>(x)];
   }

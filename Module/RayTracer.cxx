@@ -300,7 +300,7 @@ void RayTracer::ShadeHit(const Vec3& origin, const Vec3& direction, const RaySce
   }
 }
 
-void RayTracer::RenderRows(const ImageView& target, std::int64_t* ids, std::ptrdiff_t idRowStride,
+void RayTracer::RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_t idRowStride,
   int y0, int y1, RayTraceStatistics* statistics) const
 {
   if (!this->HasScene || this->Width <= 0 || target.data == nullptr ||
@@ -323,7 +323,7 @@ void RayTracer::RenderRows(const ImageView& target, std::int64_t* ids, std::ptrd
       std::uint8_t* px = target.pixel(x, y);
       const double frame[3] = { px[0] / 255.0, px[1] / 255.0, px[2] / 255.0 };
       double sum[3] = { 0.0, 0.0, 0.0 };
-      std::int64_t id = -1;
+      RasterId id = -1;
       bool any = false;
       for (int k = 0; k < perPixel; ++k)
       {
@@ -353,9 +353,9 @@ void RayTracer::RenderRows(const ImageView& target, std::int64_t* ids, std::ptrd
               {
                 const GlobalTriangle g = this->Triangles[hit.triangle];
                 const TraceMesh& mesh = this->Meshes[g.mesh];
-                const std::int64_t local_id =
+                const RasterId local_id =
                   mesh.triangleIds.empty() ? g.local : mesh.triangleIds[g.local];
-                id = (static_cast<std::int64_t>(g.mesh) << 32) + local_id;
+                id = (static_cast<RasterId>(g.mesh) << 32) + local_id;
               }
             }
           }

@@ -35,7 +35,7 @@ struct TraceMesh
   std::vector<std::array<std::uint32_t, 3>> triangles;
   /// Id reported for each triangle in the visible-triangle buffer (a polygon split into a fan
   /// gives its cell id to all its triangles). Empty: the triangle's index.
-  std::vector<std::int64_t> triangleIds;
+  std::vector<RasterId> triangleIds;
 
   enum class ColorSource
   {
@@ -95,7 +95,7 @@ public:
   /// one int64 per pixel, addressed like target with idRowStride counted in values) receives
   /// the visible triangle of the pixel's centre-most sample: meshIndex * 2^32 + triangle id, or
   /// -1. Thread-safe for disjoint row ranges. `statistics` (optional) is added to.
-  void RenderRows(const ImageView& target, std::int64_t* ids, std::ptrdiff_t idRowStride, int y0,
+  void RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_t idRowStride, int y0,
     int y1, RayTraceStatistics* statistics = nullptr) const;
 
   const std::string& GetError() const { return this->Error; }

@@ -315,8 +315,8 @@ int vtkCatadioptricRayTracer::RequestData(
             static_cast<std::uint32_t>(ids->GetId(k + 1)) });
         triangleCells.push_back(firstCell + c);
         tm.triangleIds.push_back(original
-            ? static_cast<std::int64_t>(original->GetComponent(firstCell + c, 0))
-            : static_cast<std::int64_t>(firstCell + c));
+            ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
+            : static_cast<catar::RasterId>(firstCell + c));
       }
     }
 
@@ -454,14 +454,14 @@ int vtkCatadioptricRayTracer::RequestData(
   view.height = height;
   view.rowStride = -4 * static_cast<std::ptrdiff_t>(width);
   view.data = out + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1);
-  std::int64_t* idData = nullptr;
+  catar::RasterId* idData = nullptr;
   if (this->OutputVisibleTriangle)
   {
     vtkNew<vtkTypeInt64Array> visible;
     visible->SetName("VisibleTriangle");
     visible->SetNumberOfTuples(nPixels);
     output->GetPointData()->AddArray(visible);
-    idData = reinterpret_cast<std::int64_t*>(visible->GetPointer(0)) +
+    idData = visible->GetPointer(0) +
       static_cast<std::ptrdiff_t>(width) * (height - 1);
   }
   const catar::RayTracer& tracer = in.Tracer;

@@ -327,8 +327,8 @@ TEST(ImageMetrics, SsimDropsWithNoise)
 TEST(ImageMetrics, TriangleIdDifferences)
 {
   // 4x3 buffers; the colours are pure background, so the silhouettes come from the ids only.
-  const std::vector<std::int64_t> idsA = { -1, 0, 1, 2, 3, 3, -1, 4, 5, 6, 7, -1 };
-  const std::vector<std::int64_t> idsB = { -1, 0, 9, -1, 3, 4, 5, 4, -1, 6, 8, -1 };
+  const std::vector<catar::RasterId> idsA = { -1, 0, 1, 2, 3, 3, -1, 4, 5, 6, 7, -1 };
+  const std::vector<catar::RasterId> idsB = { -1, 0, 9, -1, 3, 4, 5, 4, -1, 6, 8, -1 };
   Image a(4, 3);
   Image b(4, 3);
   ImageInput ia = Input(a);
@@ -345,7 +345,7 @@ TEST(ImageMetrics, TriangleIdDifferences)
   EXPECT_DOUBLE_EQ(r.silhouetteIoU, 7.0 / 10.0);
 
   // The same buffers stored bottom-up with a negative stride.
-  std::vector<std::int64_t> flippedA(12), flippedB(12);
+  std::vector<catar::RasterId> flippedA(12), flippedB(12);
   for (int y = 0; y < 3; ++y)
   {
     for (int x = 0; x < 4; ++x)
@@ -486,7 +486,7 @@ TEST(ImageMetrics, InvalidInput)
   shortStride.color.rowStride = 4;
   EXPECT_FALSE(CompareImages(shortStride, Input(a)).ok());
 
-  const std::vector<std::int64_t> ids(10 * 7, 0);
+  const std::vector<catar::RasterId> ids(10 * 7, 0);
   ImageInput wrongIds = Input(a);
   wrongIds.triangleIds = TriangleIdView{ ids.data(), 10, 7, 10 };
   EXPECT_FALSE(CompareImages(wrongIds, Input(a)).ok());
