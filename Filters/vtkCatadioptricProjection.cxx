@@ -18,6 +18,8 @@
 #include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <Eigen/Geometry> // cross products
+
 #include <algorithm>
 #include <cmath>
 
@@ -39,6 +41,9 @@ struct CellWorker
   vtkIdType CellOffset; // cell-data index of the first polygon
   double Width;
   double Height;
+  bool CullBackFaces;
+  catar::Mat3 CameraToWorldRotation; // R^T
+  catar::Vec3 CameraCentre;          // -R^T T: the camera centre in world coordinates
 
   template<typename CellStateT>
   void operator()(CellStateT& state, vtkIdType begin, vtkIdType end) const
@@ -57,6 +62,8 @@ struct CellWorker
       }
       catar::Vec3 centroid = catar::Vec3::Zero();
       catar::Vec3 guess = catar::Vec3::Zero();
+      catar::Vec3 normal = catar::Vec3::Zero(); // Newell's normal, |normal| = 2 area
+      catar::Vec3 last = (*this->Points)(ids[n - 1]);
       bool all = true;
       double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
       for (const auto id : ids)
@@ -66,7 +73,10 @@ struct CellWorker
           all = false;
           break;
         }
-        centroid += (*this->Points)(id);
+        const catar::Vec3 p = (*this->Points)(id);
+        centroid += p;
+        normal += last.cross(p);
+        last = p;
         guess += catar::Vec3(this->MirrorPoints + 3 * id);
         const double* px = this->Pixels + 2 * id;
         xmin = std::min(xmin, px[0]);
@@ -79,16 +89,34 @@ struct CellWorker
         continue;
       }
       centroid /= static_cast<double>(n);
+      guess /= static_cast<double>(n);
+      if (this->CullBackFaces)
+      {
+        // Facing away from the viewer (the reflection point) by more than a sliver: dropped
+        // before its exact projection. The mean of the vertices' reflection points stands in
+        // for the centroid's; cells within 1e-3 of edge-on wait for the exact one below.
+        const catar::Vec3 toViewer =
+          this->CameraToWorldRotation * guess + this->CameraCentre - centroid;
+        if (normal.dot(toViewer) < -1e-3 * normal.norm() * toViewer.norm())
+        {
+          continue;
+        }
+      }
       // The centroid reflects next to its vertices: Newton from the mean of their reflection
       // points converges in one or two steps, to the same answer as either solver.
-      const catar::ProjectedPoint q =
-        this->Projector->ProjectWorldNear(centroid, guess / static_cast<double>(n));
+      const catar::ProjectedPoint q = this->Projector->ProjectWorldNear(centroid, guess);
       if (!catar::HasProjection(q.status))
       {
         continue;
       }
       this->Depth[out] = q.pathLength;
       std::copy(q.mirrorPoint.data(), q.mirrorPoint.data() + 3, this->CentroidMirror + 3 * out);
+      if (this->CullBackFaces &&
+        normal.dot(this->CameraToWorldRotation * q.mirrorPoint + this->CameraCentre - centroid) <=
+          0.0)
+      {
+        continue;
+      }
       const bool overlapsImage =
         xmax >= -0.5 && ymax >= -0.5 && xmin < this->Width - 0.5 && ymin < this->Height - 0.5;
       this->Visible[out] = overlapsImage ? 1 : 0;
@@ -233,6 +261,10 @@ int vtkCatadioptricProjection::RequestData(
     worker.CellOffset = input->GetNumberOfVerts() + input->GetNumberOfLines();
     worker.Width = camera->GetImageWidth();
     worker.Height = camera->GetImageHeight();
+    worker.CullBackFaces = this->BackFaceCulling;
+    const catar::Mat4& pose = projector.GetModel().worldToCamera;
+    worker.CameraToWorldRotation = pose.topLeftCorner<3, 3>().transpose();
+    worker.CameraCentre = -worker.CameraToWorldRotation * pose.topRightCorner<3, 1>();
     input->GetPolys()->Visit(CellDispatch{}, worker);
   }
   vtkCellData* cd = output->GetCellData();
@@ -250,4 +282,5 @@ void vtkCatadioptricProjection::PrintSelf(ostream& os, vtkIndent indent)
   const char* file = this->CameraSlot.GetCalibrationFileName();
   os << indent << "CalibrationFileName: " << (file ? file : "(none)") << "\n";
   os << indent << "Solver: " << (this->Solver == ITERATIVE ? "Iterative" : "Quartic") << "\n";
+  os << indent << "BackFaceCulling: " << (this->BackFaceCulling ? "On" : "Off") << "\n";
 }

@@ -64,6 +64,19 @@ public:
   void SetSolverToIterative() { this->SetSolver(ITERATIVE); }
   ///@}
 
+  ///@{
+  /// Back-face culling (default off): a polygon whose normal (right-hand rule on its point
+  /// order, Newell's method) points away from its own reflection point -- the viewer of the
+  /// method -- gets Visible 0, and its centroid is not projected (CentroidDepth and
+  /// CentroidMirrorPoint stay 0). For closed, consistently oriented meshes every such polygon is
+  /// hidden by the front of the mesh, so the image does not change (painter order errors between
+  /// front and back faces go away) while the sort and the compositor draw about half the cells.
+  /// Leave it off for open or inconsistently oriented meshes.
+  vtkSetMacro(BackFaceCulling, bool);
+  vtkGetMacro(BackFaceCulling, bool);
+  vtkBooleanMacro(BackFaceCulling, bool);
+  ///@}
+
   /// The modification time includes the camera's.
   vtkMTimeType GetMTime() override;
 
@@ -78,6 +91,7 @@ protected:
 
   vtkCatadioptricCameraSlot CameraSlot;
   int Solver = QUARTIC;
+  bool BackFaceCulling = false;
 
 private:
   vtkCatadioptricProjection(const vtkCatadioptricProjection&) = delete;

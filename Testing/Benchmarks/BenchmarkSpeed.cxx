@@ -9,6 +9,7 @@
 //   CATAR_SHARED_DATA=../shared/data build/bin/BenchmarkSpeed [--frames N] [--memory-frames N]
 //     [--csv FILE] [--quick]
 // --object NAME keeps only the objects of that name (box, sphere, bunny, happy-buddha-67k, ...).
+// --threads N runs vtkSMPTools on N threads (default: all cores).
 // --quick (CI smoke) renders 3 frames of a few small objects.
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
@@ -141,6 +142,10 @@ int main(int argc, char* argv[])
     {
       csv = argv[++i];
     }
+    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
+    {
+      vtkSMPTools::Initialize(std::max(1, std::atoi(argv[++i])));
+    }
     else if (!std::strcmp(argv[i], "--object") && i + 1 < argc)
     {
       only = argv[++i];
@@ -153,7 +158,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: BenchmarkSpeed [--frames N] [--memory-frames N] [--csv FILE] [--object NAME] "
-        "[--quick]\n");
+        "[--threads N] [--quick]\n");
       return 2;
     }
   }
@@ -236,7 +241,7 @@ int main(int argc, char* argv[])
     const char* label;
     FrameOptions options;
   };
-  std::vector<Variant> variants(5);
+  std::vector<Variant> variants(8);
   variants[0].label = "1 spot, gouraud, painter, quartic";
   variants[1].label = "1 spot, gouraud, painter, iterative";
   variants[1].options.solver = vtkCatadioptricProjection::ITERATIVE;
@@ -250,6 +255,14 @@ int main(int argc, char* argv[])
   variants[4].label = "1 spot, gouraud, depth buffer, iterative";
   variants[4].options.solver = vtkCatadioptricProjection::ITERATIVE;
   variants[4].options.visibility = vtkCatadioptricCompositor::DEPTH_BUFFER;
+  variants[5].label = "1 spot, gouraud, painter, iterative, back faces culled";
+  variants[5].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variants[5].options.cullBackFaces = true;
+  variants[6].label = "3 spots, shadows, gouraud, painter, iterative, back faces culled";
+  variants[6].options = variants[2].options;
+  variants[6].options.cullBackFaces = true;
+  variants[7].label = "1 spot, gouraud, painter, quartic, back faces culled";
+  variants[7].options.cullBackFaces = true;
   for (const Variant& v : variants)
   {
     FramePipeline pipeline(target, camera, frame, v.options);

@@ -76,6 +76,7 @@ struct FrameOptions
   int lights = 1;
   bool shadows = false;
   int visibility = vtkCatadioptricCompositor::PAINTER;
+  bool cullBackFaces = false;
 };
 
 /// Times of one frame's stages in milliseconds.
@@ -101,6 +102,7 @@ public:
     this->Projection->SetInputData(mesh);
     this->Projection->SetCamera(camera);
     this->Projection->SetSolver(options.solver);
+    this->Projection->SetBackFaceCulling(options.cullBackFaces);
     this->Lighting->SetInputConnection(this->Projection->GetOutputPort());
     this->Lighting->SetShadingMode(options.shading);
     this->Lighting->SetShadows(options.shadows);

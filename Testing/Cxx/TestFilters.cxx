@@ -1,5 +1,6 @@
 // vtkCatadioptricCamera, vtkCatadioptricProjection and vtkCatadioptricPainterSort.
 #include "CalibrationIO.h"
+#include "CameraModel.h"
 #include "SphereProjection.h"
 
 #include "vtkCatadioptricCamera.h"
@@ -21,6 +22,7 @@
 
 #include "TestUtilities.h"
 
+#include <Eigen/Geometry> // cross products
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -208,6 +210,75 @@ TEST(vtkCatadioptricProjection, CellsWithAHiddenVertexAreInvisible)
     }
   }
   EXPECT_GT(invisibleCells, 0);
+}
+
+TEST(vtkCatadioptricProjection, BackFaceCullingDropsExactlyTheCellsFacingAway)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  DemoCamera(cam);
+  vtkNew<vtkSphereSource> sphere; // closed, outward normals
+  sphere->SetCenter(0.1, -0.3, 0.95);
+  sphere->SetRadius(0.05);
+  sphere->SetThetaResolution(64);
+  sphere->SetPhiResolution(32);
+  vtkNew<vtkCatadioptricProjection> all;
+  all->SetCamera(cam);
+  all->SetInputConnection(sphere->GetOutputPort());
+  all->Update();
+  vtkNew<vtkCatadioptricProjection> culled;
+  culled->SetCamera(cam);
+  culled->SetInputConnection(sphere->GetOutputPort());
+  culled->BackFaceCullingOn();
+  culled->Update();
+  vtkPolyData* a = all->GetOutput();
+  vtkPolyData* b = culled->GetOutput();
+  vtkDataArray* visA = a->GetCellData()->GetArray("Visible");
+  vtkDataArray* visB = b->GetCellData()->GetArray("Visible");
+  vtkDataArray* mirror = a->GetCellData()->GetArray("CentroidMirrorPoint");
+  vtkDataArray* depthA = a->GetCellData()->GetArray("CentroidDepth");
+  vtkDataArray* depthB = b->GetCellData()->GetArray("CentroidDepth");
+  const catar::CameraModel model = cam->GetModel();
+  vtkNew<vtkIdList> ids;
+  int visible = 0, kept = 0;
+  for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
+  {
+    if (visA->GetComponent(c, 0) == 0)
+    {
+      EXPECT_EQ(visB->GetComponent(c, 0), 0) << c;
+      continue;
+    }
+    ++visible;
+    // The exact test: the face normal against the direction to the centroid's reflection point.
+    a->GetCellPoints(c, ids);
+    catar::Vec3 centroid = catar::Vec3::Zero(), normal = catar::Vec3::Zero();
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      double p[3], q[3];
+      a->GetPoint(ids->GetId(k), p);
+      a->GetPoint(ids->GetId((k + 1) % ids->GetNumberOfIds()), q);
+      centroid += catar::Vec3(p[0], p[1], p[2]) / static_cast<double>(ids->GetNumberOfIds());
+      normal += catar::Vec3(p[0], p[1], p[2]).cross(catar::Vec3(q[0], q[1], q[2]));
+    }
+    double m[3];
+    mirror->GetTuple(c, m);
+    const catar::Vec3 toViewer = model.CameraToWorld(catar::Vec3(m[0], m[1], m[2])) - centroid;
+    const double facing = normal.normalized().dot(toViewer.normalized());
+    if (visB->GetComponent(c, 0) != 0)
+    {
+      ++kept;
+      EXPECT_GT(facing, 0.0) << c;
+      EXPECT_EQ(depthA->GetComponent(c, 0), depthB->GetComponent(c, 0)) << c;
+    }
+    else
+    {
+      EXPECT_LE(facing, 0.0) << c;
+    }
+  }
+  // Less than half of a sphere's cells face a viewer this close (0.42 of them here).
+  ASSERT_GT(visible, 1000);
+  EXPECT_GT(kept, visible / 4);
+  EXPECT_LT(kept, 2 * visible / 3);
+  std::printf("[ culling  ] %d of %d visible cells face the viewer\n", kept, visible);
 }
 
 TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
