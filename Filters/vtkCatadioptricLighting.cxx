@@ -305,7 +305,6 @@ int vtkCatadioptricLighting::RequestData(
     }
   }
   const catar::RayScene& scene = this->Internal->Scene;
-  const double offset = 1e-4 * scene.GetSceneSize();
   this->UpdateProgress(0.1);
 
   // The colour of point p with normal n seen from viewer (all world), base colour rgba.
@@ -324,15 +323,7 @@ int vtkCatadioptricLighting::RequestData(
     }
     if (shadows)
     {
-      const catar::Vec3 start = p + offset * n;
-      for (size_t k = 0; k < lights.size(); ++k)
-      {
-        const catar::LightSource& l = lights[k];
-        const catar::Vec3 target = l.kind == catar::LightSource::Kind::Directional
-          ? catar::Vec3(start + 2.0 * scene.GetSceneSize() * catar::DirectionToLight(l, p))
-          : l.position;
-        lit[k] = scene.Occluded(start, target, 0.5 * offset) ? 0 : 1;
-      }
+      catar::TraceShadows(scene, p, n, lights, lit.data());
     }
     return catar::Shade(
       p, n, viewer, lights, m, globalAmbient, shadows ? lit.data() : nullptr, false);

@@ -263,18 +263,8 @@ void RayTracer::ShadeHit(const Vec3& origin, const Vec3& direction, const RaySce
     std::vector<unsigned char> lit;
     if (this->Shadows && !this->Lights.empty())
     {
-      const double offset = 1e-4 * this->Scene.GetSceneSize();
-      const Vec3 start = p + offset * n;
       lit.resize(this->Lights.size());
-      for (std::size_t k = 0; k < this->Lights.size(); ++k)
-      {
-        const LightSource& light = this->Lights[k];
-        const Vec3 target = light.kind == LightSource::Kind::Directional
-          ? Vec3(start + 2.0 * this->Scene.GetSceneSize() * DirectionToLight(light, p))
-          : light.position;
-        lit[k] = this->Scene.Occluded(start, target, 0.5 * offset) ? 0 : 1;
-        ++statistics.shadowRays;
-      }
+      statistics.shadowRays += TraceShadows(this->Scene, p, n, this->Lights, lit.data());
     }
     colour = Shade(p, n, origin, this->Lights, material, this->GlobalAmbient,
       lit.empty() ? nullptr : lit.data(), false);
