@@ -435,27 +435,31 @@ int vtkCatadioptricLighting::RequestData(
     colors->FillValue(0);
     unsigned char* out = colors->GetPointer(0);
     vtkCellArray* polys = input->GetPolys();
+    const vtkCatadioptricPointReader points(input->GetPoints());
+    auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(cellVisible);
     vtkSMPTools::For(0, polys->GetNumberOfCells(), [&](vtkIdType b, vtkIdType e) {
       std::vector<unsigned char> lit(lights.size(), 1);
-      vtkNew<vtkIdList> ids;
+      vtkNew<vtkIdList> scratch;
       for (vtkIdType c = b; c < e; ++c)
       {
         const vtkIdType cellId = first + c;
-        if (cellVisible->GetComponent(cellId, 0) == 0)
+        if (visibleBytes ? visibleBytes->GetValue(cellId) == 0
+                         : cellVisible->GetComponent(cellId, 0) == 0)
         {
           continue;
         }
-        polys->GetCellAtId(c, ids);
-        const vtkIdType n = ids->GetNumberOfIds();
+        vtkIdType n = 0;
+        const vtkIdType* pts = nullptr;
+        polys->GetCellAtId(c, n, pts, scratch); // no copy when the ids are stored as vtkIdType
         catar::Vec3 centroid = catar::Vec3::Zero();
         catar::Vec3 area = catar::Vec3::Zero();
+        catar::Vec3 last = points(pts[n - 1]);
         for (vtkIdType k = 0; k < n; ++k)
         {
-          double a[3], q[3];
-          input->GetPoint(ids->GetId(k), a);
-          input->GetPoint(ids->GetId((k + 1) % n), q);
-          centroid += V3(a);
-          area += V3(a).cross(V3(q));
+          const catar::Vec3 a = points(pts[k]);
+          centroid += a;
+          area += last.cross(a);
+          last = a;
         }
         centroid /= static_cast<double>(n);
         // Base colour: a cell colour, or the mean of the point colours.
@@ -463,7 +467,7 @@ int vtkCatadioptricLighting::RequestData(
         for (vtkIdType k = 0; k < (base.IsPerPoint() ? n : 1); ++k)
         {
           float v[4];
-          base.Get(ids->GetId(k), cellId, v);
+          base.Get(pts[k], cellId, v);
           for (int j = 0; j < 4; ++j)
           {
             rgba[j] += v[j] / (base.IsPerPoint() ? n : 1);
