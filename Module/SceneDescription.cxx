@@ -377,6 +377,7 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   {
     throw fs::ParseError("'solver' must be 'quartic' or 'iterative'");
   }
+  scene.cullBackFaces = fs::Number(root, "cull_back_faces", 0) != 0;
   scene.visibility = fs::String(root, "visibility", scene.visibility);
   if (scene.visibility != "painter" && scene.visibility != "depth")
   {

@@ -112,6 +112,9 @@ struct SceneDescription
   /// Key `visibility`: "painter" (the paper's painter order, default) or "depth" (a per-pixel
   /// depth buffer on the path length): vtkCatadioptricCompositor's Visibility.
   std::string visibility = "painter";
+  /// Key `cull_back_faces` (0 or 1, default 0): vtkCatadioptricProjection's BackFaceCulling for
+  /// every object (only for closed, consistently oriented meshes).
+  bool cullBackFaces = false;
   SceneBackground background;
   SceneLighting lighting;
   SceneRemesh remesh; ///< default of every object

@@ -204,6 +204,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     auto proj = vtkSmartPointer<vtkCatadioptricProjection>::New();
     proj->SetInputData(meshes[i]);
     proj->SetCamera(in.Camera);
+    proj->SetBackFaceCulling(scene.cullBackFaces);
     proj->SetSolver(scene.solver == catar::SolverType::Iterative
         ? vtkCatadioptricProjection::ITERATIVE
         : vtkCatadioptricProjection::QUARTIC);

@@ -23,6 +23,7 @@ TEST(SceneDescription, DemoSceneParses)
   EXPECT_EQ(s.width, 1328);
   ASSERT_EQ(s.objects.size(), 2u);
   EXPECT_EQ(s.objects[0].type, "box");
+  EXPECT_FALSE(s.cullBackFaces); // off unless asked for
   EXPECT_TRUE(s.objects[0].faceColors);
   EXPECT_EQ(s.objects[1].type, "torus");
   EXPECT_EQ(s.background.type, "environment");
@@ -33,6 +34,7 @@ TEST(SceneDescription, ObjectsAndDefaults)
 {
   const std::string text = std::string("%YAML:1.0\n---\n") + kCamera + R"(
 solver: iterative
+cull_back_faces: 1
 background: { type: color, color: [0.1, 0.2, 0.3] }
 objects:
   - { type: sphere, radius: 0.03, translate: [0.1, 0, 0], color: [1, 0, 0] }
@@ -42,6 +44,7 @@ objects:
   std::string error;
   ASSERT_TRUE(ParseScene(text, "/data/scenes", s, error)) << error;
   EXPECT_EQ(s.solver, SolverType::Iterative);
+  EXPECT_TRUE(s.cullBackFaces);
   EXPECT_EQ(s.background.type, "color");
   EXPECT_DOUBLE_EQ(s.background.color.z(), 0.3);
   ASSERT_EQ(s.objects.size(), 2u);
