@@ -454,7 +454,8 @@ ProjectionStatus MirrorFrame::Reflect(
         const double at = -a * s;
         const double bn = bx * c + by * s - 1.0;
         const double bt = by * c - bx * s;
-        if (an > kGrazingCosine * std::sqrt(an * an + at * at) && bn > 0.0 && bt >= 0.0)
+        if (an > 0.0 && an * an > kGrazingCosine * kGrazingCosine * (an * an + at * at) &&
+          bn > 0.0 && bt >= 0.0)
         {
           mirrorPoint = this->Centre + this->Radius * (c * this->E1 + s * e2);
           return ProjectionStatus::Valid;
@@ -503,7 +504,7 @@ ProjectionStatus MirrorFrame::Reflect(
   // Grazing test: cosine of the incidence angle at the camera side.
   const double an = a * c - 1.0;
   const double at = -a * s;
-  if (!(an > kGrazingCosine * std::sqrt(an * an + at * at)))
+  if (!(an > 0.0 && an * an > kGrazingCosine * kGrazingCosine * (an * an + at * at)))
   {
     return ProjectionStatus::NoReflection;
   }
@@ -560,7 +561,7 @@ ProjectedPoint SphereProjector::ProjectCameraFrom(
     return out;
   }
   // The camera images only mirror points in front of it.
-  if (!(r.z() > 1e-12 * r.norm()))
+  if (!(r.z() > 0.0 && r.z() * r.z() > 1e-24 * r.squaredNorm()))
   {
     out.status = ProjectionStatus::NoReflection;
     return out;
