@@ -36,6 +36,13 @@ vtkStandardNewMacro(vtkCatadioptricLighting);
 
 namespace
 {
+// Points (or cells) per parallel task: vtkSMPTools' STDThread backend starts its threads for
+// every parallel loop, which costs more than lighting a small mesh; smaller ranges run inline.
+constexpr vtkIdType kPointGrain = 1024;
+}
+
+namespace
+{
 catar::Vec3 V3(const double* v)
 {
   return catar::Vec3(v[0], v[1], v[2]);
@@ -377,7 +384,7 @@ int vtkCatadioptricLighting::RequestData(
     const vtkCatadioptricPointReader points(input->GetPoints());
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(pointVisible);
     auto* mirrorDoubles = vtkDoubleArray::SafeDownCast(mirror);
-    vtkSMPTools::For(0, nPts, [&](vtkIdType b, vtkIdType e) {
+    vtkSMPTools::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
       std::vector<unsigned char> lit(lights.size(), 1);
       for (vtkIdType i = b; i < e; ++i)
       {
@@ -437,7 +444,7 @@ int vtkCatadioptricLighting::RequestData(
     vtkCellArray* polys = input->GetPolys();
     const vtkCatadioptricPointReader points(input->GetPoints());
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(cellVisible);
-    vtkSMPTools::For(0, polys->GetNumberOfCells(), [&](vtkIdType b, vtkIdType e) {
+    vtkSMPTools::For(0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
       std::vector<unsigned char> lit(lights.size(), 1);
       vtkNew<vtkIdList> scratch;
       for (vtkIdType c = b; c < e; ++c)

@@ -25,6 +25,10 @@ vtkStandardNewMacro(vtkCatadioptricPainterSort);
 
 namespace
 {
+// Elements per parallel copy task: vtkSMPTools' STDThread backend starts its threads for every
+// parallel loop, which costs more than copying a small mesh; smaller ranges run inline.
+constexpr vtkIdType kCopyGrain = 16384;
+
 // A 64-bit key whose unsigned order is the order of decreasing depth (far to near): the IEEE bits
 // made monotone (negative numbers reversed), then complemented. -0 is +0, as the comparison of
 // doubles has it.
@@ -103,7 +107,7 @@ vtkSmartPointer<vtkCellArray> Reordered(
   vtkNew<ArrayT> connectivity;
   connectivity->SetNumberOfValues(outOff[n]);
   ValueT* outConn = connectivity->GetPointer(0);
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+  vtkSMPTools::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType i = b; i < e; ++i)
     {
       const vtkIdType c = order[i];
@@ -150,7 +154,7 @@ void GatherCellData(vtkCellData* in, vtkCellData* out, const std::vector<vtkIdTy
       auto gather = [&](auto size) {
         constexpr std::size_t B = decltype(size)::value;
         const std::size_t width = B ? B : bytes;
-        vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
+        vtkSMPTools::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
           for (vtkIdType i = b; i < e; ++i)
           {
             std::memcpy(to + i * width, from + source[i] * width, B ? B : width);
