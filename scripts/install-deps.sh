@@ -10,7 +10,7 @@ packages=(build-essential cmake git pkg-config
   libqt5opengl5-dev qtxmlpatterns5-dev-tools libqt5x11extras5-dev
   libcgal-dev libeigen3-dev libopencv-dev libopenmesh-dev libgtest-dev
   libbenchmark-dev libembree-dev xvfb xauth
-  libdouble-conversion-dev liblz4-dev libutfcpp-dev libopenmpi-dev)
+  libdouble-conversion-dev liblz4-dev libutfcpp-dev libopenmpi-dev libglew-dev)
 if [[ "${1:-}" == "--if-missing" ]]; then
   missing=0
   for p in "${packages[@]}"; do
