@@ -67,7 +67,7 @@ struct CellWorker
       catar::Vec3 centroid = catar::Vec3::Zero();
       catar::Vec3 guess = catar::Vec3::Zero();
       catar::Vec3 normal = catar::Vec3::Zero(); // Newell's normal, |normal| = 2 area
-      catar::Vec3 last = (*this->Points)(ids[n - 1]);
+      catar::Vec3 last = this->CullBackFaces ? (*this->Points)(ids[n - 1]) : catar::Vec3::Zero();
       bool all = true;
       double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
       for (const auto id : ids)
@@ -79,8 +79,11 @@ struct CellWorker
         }
         const catar::Vec3 p = (*this->Points)(id);
         centroid += p;
-        normal += last.cross(p);
-        last = p;
+        if (this->CullBackFaces)
+        {
+          normal += last.cross(p);
+          last = p;
+        }
         guess += catar::Vec3(this->MirrorPoints + 3 * id);
         const double* px = this->Pixels + 2 * id;
         xmin = std::min(xmin, px[0]);
