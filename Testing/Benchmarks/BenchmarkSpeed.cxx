@@ -7,9 +7,10 @@
 // spotlights with shadows, the depth buffer, the exact reference renderer, and resident memory
 // over --memory-frames frames (default 1000). Run:
 //   CATAR_SHARED_DATA=../shared/data build/bin/BenchmarkSpeed [--frames N] [--memory-frames N]
-//     [--csv FILE] [--quick]
+//     [--csv FILE] [--object NAME] [--max-seconds S] [--threads N] [--quick]
 // --object NAME keeps only the objects of that name (box, sphere, bunny, happy-buddha-67k, ...).
-// --threads N runs vtkSMPTools on N threads (default: all cores).
+// --max-seconds S (default 30) stops a row after S seconds (at least 5 frames; the table
+// gives the count). --threads N runs vtkSMPTools on N threads (default: all cores).
 // --quick (CI smoke) renders 3 frames of a few small objects.
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
@@ -84,6 +85,7 @@ struct Result
   vtkIdType triangles;
   StageTimes stages;
   double frameMs;
+  int frames = 0; // frames measured
 };
 
 bool WriteCsv(const std::string& file, const std::vector<Result>& results)
@@ -93,10 +95,11 @@ bool WriteCsv(const std::string& file, const std::vector<Result>& results)
     return true;
   }
   std::ofstream out(file);
-  out << "object,variant,triangles,projection_ms,lighting_ms,sort_ms,composite_ms,frame_ms,fps\n";
+  out << "object,variant,triangles,frames,projection_ms,lighting_ms,sort_ms,composite_ms,frame_ms,"
+         "fps\n";
   for (const Result& r : results)
   {
-    out << r.object << ",\"" << r.variant << "\"," << r.triangles;
+    out << r.object << ",\"" << r.variant << "\"," << r.triangles << "," << r.frames;
     for (double ms : r.stages.ms)
     {
       out << "," << ms;
@@ -113,9 +116,10 @@ bool WriteCsv(const std::string& file, const std::vector<Result>& results)
 
 void PrintRow(const Result& r)
 {
-  std::printf("| %s | %s | %lld | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f |\n", r.object.c_str(),
-    r.variant.c_str(), static_cast<long long>(r.triangles), r.stages.ms[0], r.stages.ms[1],
-    r.stages.ms[2], r.stages.ms[3], r.frameMs, r.frameMs > 0 ? 1e3 / r.frameMs : 0.0);
+  std::printf("| %s | %s | %lld | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f |\n",
+    r.object.c_str(), r.variant.c_str(), static_cast<long long>(r.triangles), r.frames,
+    r.stages.ms[0], r.stages.ms[1], r.stages.ms[2], r.stages.ms[3], r.frameMs,
+    r.frameMs > 0 ? 1e3 / r.frameMs : 0.0);
   std::fflush(stdout);
 }
 } // namespace
@@ -125,6 +129,7 @@ int main(int argc, char* argv[])
   vtkSMPTools::SetBackend("STDThread");
   int frames = 300;
   int memoryFrames = 1000;
+  double maxSeconds = 30.0;
   bool quick = false;
   std::string csv;
   std::string only; // --object NAME: only the objects of that name
@@ -142,6 +147,10 @@ int main(int argc, char* argv[])
     {
       csv = argv[++i];
     }
+    else if (!std::strcmp(argv[i], "--max-seconds") && i + 1 < argc)
+    {
+      maxSeconds = std::max(0.0, std::atof(argv[++i]));
+    }
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
     {
       vtkSMPTools::Initialize(std::max(1, std::atoi(argv[++i])));
@@ -158,7 +167,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: BenchmarkSpeed [--frames N] [--memory-frames N] [--csv FILE] [--object NAME] "
-        "[--threads N] [--quick]\n");
+        "[--threads N] [--max-seconds S] [--quick]\n");
       return 2;
     }
   }
@@ -197,9 +206,9 @@ int main(int argc, char* argv[])
     }
   }
   std::vector<Result> results;
-  std::printf("Full per-frame path, 1328x1048, median of %d frames (ms):\n\n", frames);
-  std::printf("| object | variant | triangles | projection | lighting | sort | composite | "
-              "frame | fps |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("Full per-frame path, 1328x1048, median of up to %d frames (ms):\n\n", frames);
+  std::printf("| object | variant | triangles | frames | projection | lighting | sort | "
+              "composite | frame | fps |\n|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& o : objects)
   {
     if (!only.empty() && o.first != only)
@@ -215,7 +224,7 @@ int main(int argc, char* argv[])
     options.solver = vtkCatadioptricProjection::ITERATIVE;
     FramePipeline pipeline(mesh, camera, frame, options);
     Result r{ o.first, "1 spot, gouraud, painter, iterative", mesh->GetNumberOfPolys(), {}, 0.0 };
-    r.stages = MedianFrame(pipeline, frames, &r.frameMs);
+    r.stages = MedianFrame(pipeline, frames, &r.frameMs, maxSeconds, &r.frames);
     PrintRow(r);
     results.push_back(r);
   }
@@ -232,10 +241,10 @@ int main(int argc, char* argv[])
   {
     return WriteCsv(csv, results) ? 0 : 1;
   }
-  std::printf("\nVariants on the %s (%lld triangles), median of %d frames (ms):\n\n", name.c_str(),
-    static_cast<long long>(target->GetNumberOfPolys()), frames);
-  std::printf("| object | variant | triangles | projection | lighting | sort | composite | "
-              "frame | fps |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\nVariants on the %s (%lld triangles), median of up to %d frames (ms):\n\n",
+    name.c_str(), static_cast<long long>(target->GetNumberOfPolys()), frames);
+  std::printf("| object | variant | triangles | frames | projection | lighting | sort | "
+              "composite | frame | fps |\n|---|---|---|---|---|---|---|---|---|---|\n");
   struct Variant
   {
     const char* label;
@@ -267,7 +276,7 @@ int main(int argc, char* argv[])
   {
     FramePipeline pipeline(target, camera, frame, v.options);
     Result r{ name, v.label, target->GetNumberOfPolys(), {}, 0.0 };
-    r.stages = MedianFrame(pipeline, frames, &r.frameMs);
+    r.stages = MedianFrame(pipeline, frames, &r.frameMs, maxSeconds, &r.frames);
     PrintRow(r);
     results.push_back(r);
   }
@@ -294,8 +303,10 @@ int main(int argc, char* argv[])
     Result r{ name, "exact reference renderer (1 ray per pixel)", target->GetNumberOfPolys(), {},
       Median(times) };
     r.stages.ms = { 0, 0, 0, r.frameMs };
-    std::printf("| %s | %s | %lld | | | | | %.2f | %.1f |\n", r.object.c_str(), r.variant.c_str(),
-      static_cast<long long>(r.triangles), r.frameMs, 1e3 / r.frameMs);
+    r.frames = tracerFrames;
+    std::printf("| %s | %s | %lld | %d | | | | | %.2f | %.1f |\n", r.object.c_str(),
+      r.variant.c_str(), static_cast<long long>(r.triangles), r.frames, r.frameMs,
+      1e3 / r.frameMs);
     results.push_back(r);
   }
 

@@ -169,9 +169,12 @@ private:
   vtkNew<vtkCatadioptricCompositor> Compositor;
 };
 
-/// Median stage times over `frames` frames (after one warm-up frame).
-inline StageTimes MedianFrame(FramePipeline& pipeline, int frames, double* medianTotal)
+/// Median stage times over `frames` frames (after one warm-up frame), or over as many as fit in
+/// `maxSeconds` (at least 5) when the frames are slow; `measured` (optional) receives the count.
+inline StageTimes MedianFrame(FramePipeline& pipeline, int frames, double* medianTotal,
+  double maxSeconds = 1e300, int* measured = nullptr)
 {
+  const auto start = Clock::now();
   pipeline.Frame(0);
   std::array<std::vector<double>, StageTimes::N> stages;
   std::vector<double> totals;
@@ -183,6 +186,10 @@ inline StageTimes MedianFrame(FramePipeline& pipeline, int frames, double* media
       stages[s].push_back(t.ms[s]);
     }
     totals.push_back(t.Total());
+    if (f >= 5 && Ms(start, Clock::now()) > 1e3 * maxSeconds)
+    {
+      break;
+    }
   }
   StageTimes m;
   for (int s = 0; s < StageTimes::N; ++s)
@@ -190,6 +197,10 @@ inline StageTimes MedianFrame(FramePipeline& pipeline, int frames, double* media
     m.ms[s] = Median(stages[s]);
   }
   *medianTotal = Median(totals);
+  if (measured)
+  {
+    *measured = static_cast<int>(totals.size());
+  }
   return m;
 }
 } // namespace catar_benchmark
