@@ -695,6 +695,9 @@ TEST(vtkCatadioptricCompositor, DepthBufferResolvesInterpenetratingQuads)
   EXPECT_EQ(p.checked, d.checked);
   EXPECT_GT(p.wrong, 100) << "of " << p.checked;
   EXPECT_EQ(p.wrongSingle, 0);
+  std::printf("[ visibility ] interpenetrating quads, pixels wrong where they overlap: painter %d "
+              "of %d, depth buffer %d of %d\n",
+    p.wrong, p.checked, d.wrong, d.checked);
 
   // Two meshes, one quad each, given in either order: the same picture, right again.
   const auto a = FacetMesh({ facets[0] }, n);
@@ -752,6 +755,9 @@ TEST(vtkCatadioptricCompositor, DepthBufferResolvesCyclicOverlap)
   const auto painter = Composite(cam, { three }, vtkCatadioptricCompositor::PAINTER);
   const VisibilityScore s = Score(painter, cam, facets, 0.01, tie);
   EXPECT_GT(s.wrong, 100) << "a painter order cannot draw a cycle";
+  std::printf("[ visibility ] cyclic sticks, pixels wrong where they overlap: painter %d of %d, "
+              "depth buffer %d of %d\n",
+    s.wrong, s.checked, d.wrong, d.checked);
 
   // Finely meshed (64 triangles each) the edges follow the curves: judged up to 4 mm from them.
   const auto fine =
