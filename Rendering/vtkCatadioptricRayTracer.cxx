@@ -292,6 +292,12 @@ int vtkCatadioptricRayTracer::RequestData(
       meshes.push_back(tm);
       continue;
     }
+    if (this->OutputVisibleTriangle && mesh->GetNumberOfCells() >= (vtkIdType(1) << 32))
+    {
+      vtkErrorMacro("Mesh " << m << " has " << mesh->GetNumberOfCells()
+                            << " cells: VisibleTriangle ids hold cell ids below 2^32.");
+      return 0;
+    }
     const vtkIdType nPts = mesh->GetNumberOfPoints();
     tm.points.resize(nPts);
     for (vtkIdType i = 0; i < nPts; ++i)
