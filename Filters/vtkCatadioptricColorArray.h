@@ -28,6 +28,8 @@ public:
   bool IsPerPoint() const { return this->PerPoint; }
   /// Number of components of the array (0 without one).
   int GetNumberOfComponents() const { return this->Components; }
+  /// The array found (null without one), for callers that read it with typed access.
+  vtkDataArray* GetArray() const { return this->Array; }
 
   /// The colour of point `pointId` (point data) or cell `cellId` (cell data), RGBA in [0,1].
   void Get(vtkIdType pointId, vtkIdType cellId, float rgba[4]) const;

@@ -17,15 +17,21 @@
 // Attributes (r, g, b, a, depth, and u, v with a texture) are planes c(x, y) evaluated in double
 // at each covered pixel from the row start value (no accumulation across rows or pixels).
 //
-// Texturing has its own scan loop (ScanTextured, instantiated per channel count and depth test)
-// and its own out-of-line copy of the set-up (RasterizeTextured = Rasterize<true>), so the
-// untextured code (Rasterize<false> with Scan) has no texture test in its loops. The small helpers
-// used by both are declared inline: without the hint GCC stops inlining them into the untextured
-// loops once the textured code makes the file larger (measured: ~10% slower Gouraud).
-// The depth test and the id buffer are template parameters of the scans (kDepth, kIds), so the
-// painter path (no depth, no ids) tests neither per pixel; the untextured scans with a depth or id
-// buffer are instantiated out of line (ScanWithBuffers), so only the two painter scans are inlined
-// into rasterizeTriangle.
+// rasterizeTriangle checks and snaps its vertices and then draws exactly as
+// rasterizeSnappedTriangle (DrawSnapped): the two entry points share every drawing decision.
+//
+// One span walk (Scan) serves every variant: the edge walk, the depth test and the id write are
+// written once, and what is done with a drawn pixel is a "shader" template argument (flat,
+// Gouraud, textured per channel count), inlined into the walk, so each instantiation tests
+// nothing per pixel that it does not use. Texturing has its own out-of-line set-up
+// (DrawTextured, reached through RasterizeSnappedTextured), so the untextured code has no texture
+// test in its loops. The small helpers used by both are declared inline: without the hint GCC
+// stops inlining them into the untextured loops once the textured code makes the file larger
+// (measured: ~10% slower Gouraud).
+// The depth test and the id buffer are template parameters of the walk (kDepth, kIds), so the
+// painter path (no depth, no ids) tests neither per pixel; the untextured walks with a depth or id
+// buffer are instantiated out of line (ScanWithBuffers), so only the two painter walks are inlined
+// into the untextured entry point.
 // The bilinear sampler works on the 0..255 scale with a + f (b - a) interpolations, which stay
 // within [min(a, b), max(a, b)] in float and return a exactly for f == 0 (texel centres exact).
 #include "Rasterizer.h"
@@ -71,28 +77,17 @@ bool InGuardBand(const RasterVertex& v)
   return std::fabs(v.x) <= kRasterGuardBand && std::fabs(v.y) <= kRasterGuardBand;
 }
 
-// Nearest grid value, exact halves rounded up: floor(256 c + 0.5) (|c| <= 2^20, so exact).
-std::int64_t Snap(double c)
+// floor(a / kOne) and ceil(a / kOne) for any sign of a: arithmetic shifts (signed >> shifts in
+// the sign with every supported compiler, and by definition since C++20). A division and a
+// remainder instead cost ~70 instructions per triangle in the four of CentreRange (measured).
+inline std::int64_t FloorToPixel(std::int64_t a)
 {
-  const double v = c * static_cast<double>(kOne) + 0.5;
-  const std::int64_t t = static_cast<std::int64_t>(v); // truncates towards zero
-  return static_cast<double>(t) > v ? t - 1 : t;
+  return a >> kRasterSubPixelBits;
 }
 
-// floor(a / kOne) and ceil(a / kOne) for any sign of a.
-std::int64_t FloorToPixel(std::int64_t a)
+inline std::int64_t CeilToPixel(std::int64_t a)
 {
-  std::int64_t q = a / kOne;
-  if (a % kOne < 0)
-  {
-    --q;
-  }
-  return q;
-}
-
-std::int64_t CeilToPixel(std::int64_t a)
-{
-  return -FloorToPixel(-a);
+  return (a + kOne - 1) >> kRasterSubPixelBits;
 }
 
 inline float Clamp01(float v)
@@ -159,18 +154,93 @@ struct PlaneBasis
   }
 };
 
+// The geometry of one triangle clipped to the area to scan.
 struct Setup
 {
-  int xMin, xMax, yMin, yMax;     // inclusive pixel range to scan (already clipped)
-  std::int64_t w[3];              // biased edge functions at (xMin, yMin)
-  std::int64_t stepX[3];          // change per pixel to the right
-  std::int64_t stepY[3];          // change per row down
-  Plane colour[4];                // r, g, b, a (used when not flat)
-  Plane depth;                    // used with a depth buffer
-  BlendSource flat;               // used when flat
-  std::uint8_t flatBytes[4] = {}; // opaque flat colour
-  bool opaque = false;            // alpha == 1 at every vertex (so at every pixel)
+  int xMin, xMax, yMin, yMax; // inclusive pixel range to scan (already clipped)
+  std::int64_t w[3];          // biased edge functions at (xMin, yMin)
+  std::int64_t stepX[3];      // change per pixel to the right
+  std::int64_t stepY[3];      // change per row down
+  Plane depth;                // used with a depth buffer
 };
+
+// Snapped vertices in the normalised winding (positive doubled area).
+struct Grid
+{
+  std::int64_t X[3], Y[3];
+};
+
+// Edge i is the one opposite vertex i: a = vertex i+1, b = vertex i+2. Its biased edge function
+// at the grid point (px, py) (covered iff all three are >= 0) and its steps per pixel.
+CATAR_ALWAYS_INLINE void EdgeSetup(const Grid& g, std::int64_t px, std::int64_t py,
+  std::int64_t w[3], std::int64_t stepX[3], std::int64_t stepY[3])
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    const int a = (i + 1) % 3;
+    const int b = (i + 2) % 3;
+    const std::int64_t ex = g.X[b] - g.X[a];
+    const std::int64_t ey = g.Y[b] - g.Y[a];
+    const bool topLeft = ey < 0 || (ey == 0 && ex > 0);
+    w[i] = ex * (py - g.Y[a]) - ey * (px - g.X[a]) - (topLeft ? 0 : 1);
+    stepX[i] = -ey * kOne;
+    stepY[i] = ex * kOne;
+  }
+}
+
+// Minimum and maximum of three, written so that compilers select (cmov) rather than branch:
+// std::min({ a, b, c }) compiles to compare-and-jump chains, which mispredict on triangles at
+// random places (measured: a third of coveredPixelBounds' time).
+template<typename T>
+CATAR_ALWAYS_INLINE T Min3(T a, T b, T c)
+{
+  const T ab = b < a ? b : a;
+  return c < ab ? c : ab;
+}
+
+template<typename T>
+CATAR_ALWAYS_INLINE T Max3(T a, T b, T c)
+{
+  const T ab = b > a ? b : a;
+  return c > ab ? c : ab;
+}
+
+// The inclusive range of pixel centres inside the snapped triangle's bounding box and clip
+// (xMin > xMax or yMin > yMax when there is none).
+CATAR_ALWAYS_INLINE void CentreRange(
+  const Grid& g, const PixelRect& clip, int& xMin, int& yMin, int& xMax, int& yMax)
+{
+  const std::int64_t bx0 = CeilToPixel(Min3(g.X[0], g.X[1], g.X[2]));
+  const std::int64_t by0 = CeilToPixel(Min3(g.Y[0], g.Y[1], g.Y[2]));
+  const std::int64_t bx1 = FloorToPixel(Max3(g.X[0], g.X[1], g.X[2]));
+  const std::int64_t by1 = FloorToPixel(Max3(g.Y[0], g.Y[1], g.Y[2]));
+  xMin = static_cast<int>(std::max<std::int64_t>(bx0, clip.x0));
+  yMin = static_cast<int>(std::max<std::int64_t>(by0, clip.y0));
+  xMax = static_cast<int>(std::min<std::int64_t>(bx1, static_cast<std::int64_t>(clip.x1) - 1));
+  yMax = static_cast<int>(std::min<std::int64_t>(by1, static_cast<std::int64_t>(clip.y1) - 1));
+}
+
+// Snaps t's positions into g in the normalised winding; order receives the vertex indices in that
+// winding. Returns the doubled area before normalisation (0: degenerate).
+CATAR_ALWAYS_INLINE std::int64_t Normalise(
+  const std::int32_t x[3], const std::int32_t y[3], Grid& g, int order[3])
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    g.X[i] = x[i];
+    g.Y[i] = y[i];
+    order[i] = i;
+  }
+  const std::int64_t area =
+    (g.X[1] - g.X[0]) * (g.Y[2] - g.Y[0]) - (g.Y[1] - g.Y[0]) * (g.X[2] - g.X[0]);
+  if (area < 0)
+  {
+    std::swap(order[1], order[2]);
+    std::swap(g.X[1], g.X[2]);
+    std::swap(g.Y[1], g.Y[2]);
+  }
+  return area;
+}
 
 // A valid texture in the form the sampler uses.
 struct Texture
@@ -243,24 +313,157 @@ CATAR_ALWAYS_INLINE void Bilinear(const Texture& t, double u, double v, float ou
   }
 }
 
-// Scans the bounding box; returns true when at least one pixel centre is covered. Everything
-// the inner loop needs is copied to locals first: stores through the uint8_t pixel pointer may
-// alias anything, which would otherwise force reloads from s.
-template<bool kFlat, bool kDepth, bool kIds>
+// Shaders: what the span walk does with each drawn pixel. row(i) is called at the start of every
+// row (i = rows below yMin), pixel(p, k) for every drawn pixel (k = columns right of xMin). They
+// are passed to Scan by value, so their fields live in registers rather than behind the pixel
+// pointer, through which any store may alias.
+
+// Equal vertex colours: one premultiplied source (or, opaque, one RGBA word) for every pixel.
+struct FlatShader
+{
+  BlendSource source;
+  std::uint32_t packed; // opaque colour bytes
+  bool opaque;
+
+  CATAR_ALWAYS_INLINE void row(double) {}
+  CATAR_ALWAYS_INLINE void pixel(std::uint8_t* p, double) const
+  {
+    if (opaque)
+    {
+      std::memcpy(p, &packed, 4);
+    }
+    else
+    {
+      Blend(p, source);
+    }
+  }
+};
+
+// Gouraud: colour planes evaluated at every pixel.
+struct GouraudShader
+{
+  Plane cr, cg, cb, ca;
+  bool opaque;
+  double rRow = 0, gRow = 0, bRow = 0, aRow = 0;
+
+  CATAR_ALWAYS_INLINE void row(double i)
+  {
+    rRow = cr.origin + cr.dy * i;
+    gRow = cg.origin + cg.dy * i;
+    bRow = cb.origin + cb.dy * i;
+    aRow = ca.origin + ca.dy * i;
+  }
+  CATAR_ALWAYS_INLINE void pixel(std::uint8_t* p, double k) const
+  {
+    const float r = Clamp01(rRow + cr.dx * k);
+    const float g = Clamp01(gRow + cg.dx * k);
+    const float b = Clamp01(bRow + cb.dx * k);
+    if (opaque) // out = round(255 c), alpha 255, whatever was there
+    {
+      p[0] = ToByte(255.0f * r);
+      p[1] = ToByte(255.0f * g);
+      p[2] = ToByte(255.0f * b);
+      p[3] = 255;
+    }
+    else
+    {
+      Blend(p, MakeSource(r, g, b, Clamp01(aRow + ca.dx * k)));
+    }
+  }
+};
+
+// The textured shader relies on an opaque texel (sa = 255) giving alpha exactly 1.
+static_assert(255.0f * (1.0f / 255.0f) == 1.0f, "255 * (1 / 255) must round to 1 in float");
+
+// Textured: src = Gouraud colour (or the equal vertex colour, flat) * bilinear texel.
+template<int kChannels>
+struct TexturedShader
+{
+  Texture tex;
+  Plane cr, cg, cb, ca, cu, cv;
+  bool opaque; // opaque vertices and a texture without alpha: overwrite, no need to read
+  bool flat;   // equal vertex colours (white, typically): no colour planes per pixel
+  float flatColour[4];
+  double rRow = 0, gRow = 0, bRow = 0, aRow = 0, uRow = 0, vRow = 0;
+
+  CATAR_ALWAYS_INLINE void row(double i)
+  {
+    rRow = cr.origin + cr.dy * i;
+    gRow = cg.origin + cg.dy * i;
+    bRow = cb.origin + cb.dy * i;
+    aRow = ca.origin + ca.dy * i;
+    uRow = cu.origin + cu.dy * i;
+    vRow = cv.origin + cv.dy * i;
+  }
+  CATAR_ALWAYS_INLINE void pixel(std::uint8_t* p, double k) const
+  {
+    float t[4];
+    Bilinear<kChannels>(tex, uRow + cu.dx * k, vRow + cv.dx * k, t);
+    const float r = flat ? flatColour[0] : Clamp01(rRow + cr.dx * k);
+    const float g = flat ? flatColour[1] : Clamp01(gRow + cg.dx * k);
+    const float b = flat ? flatColour[2] : Clamp01(bRow + cb.dx * k);
+    if (opaque) // texel alpha 255, vertex alpha 1: out = round(c * texel), alpha 255
+    {
+      p[0] = ToByte(r * t[0]);
+      p[1] = ToByte(g * t[1]);
+      p[2] = ToByte(b * t[2]);
+      p[3] = 255;
+    }
+    else
+    {
+      const float a = flat ? flatColour[3] : Clamp01(aRow + ca.dx * k);
+      const float sa = a * t[3];                // 255 * alpha
+      const float alpha = sa * (1.0f / 255.0f); // exactly 1 when sa == 255 (static_assert)
+      Blend(
+        p, BlendSource{ r * t[0] * alpha, g * t[1] * alpha, b * t[2] * alpha, sa, 1.0f - alpha });
+    }
+  }
+};
+
+// The span walk over the clipped bounding box: coverage, then (kDepth) the depth test and write,
+// then (kIds) the id, then the shader. Returns true when at least one pixel centre is covered.
+// Everything the inner loop needs is copied to locals first: stores through the uint8_t pixel
+// pointer may alias anything, which would otherwise force reloads from s.
+template<bool kDepth, bool kIds, typename Shader>
 bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView, RasterId id,
-  const Setup& s)
+  const Setup& s, Shader shader)
 {
   const int xMin = s.xMin;
   const int xMax = s.xMax;
   const std::int64_t sx0 = s.stepX[0], sx1 = s.stepX[1], sx2 = s.stepX[2];
   const std::int64_t sy0 = s.stepY[0], sy1 = s.stepY[1], sy2 = s.stepY[2];
-  const BlendSource flat = s.flat;
-  const bool opaque = s.opaque;
-  std::uint32_t packed;
-  std::memcpy(&packed, s.flatBytes, 4);
-  const Plane cr = s.colour[0], cg = s.colour[1], cb = s.colour[2], ca = s.colour[3];
   const Plane cz = s.depth;
   const bool writeDepth = kDepth && depthView->write;
+
+  // One pixel centre in the box (most triangles of dense meshes that draw anything): the walk's
+  // work for it, without the loops (rowIndex = k = 0, the same arithmetic).
+  if (s.xMin == xMax && s.yMin == s.yMax)
+  {
+    if ((s.w[0] | s.w[1] | s.w[2]) < 0)
+    {
+      return false;
+    }
+    if (kDepth)
+    {
+      const float z = static_cast<float>((cz.origin + cz.dy * 0.0) + cz.dx * 0.0);
+      float* zq = depthView->at(xMin, s.yMin);
+      if (!(z < *zq))
+      {
+        return true;
+      }
+      if (writeDepth)
+      {
+        *zq = z;
+      }
+    }
+    if (kIds)
+    {
+      *idView->at(xMin, s.yMin) = id;
+    }
+    shader.row(0.0);
+    shader.pixel(img.pixel(xMin, s.yMin), 0.0);
+    return true;
+  }
 
   bool any = false;
   std::int64_t r0 = s.w[0], r1 = s.w[1], r2 = s.w[2];
@@ -271,10 +474,7 @@ bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView
     float* zp = kDepth ? depthView->at(xMin, y) : nullptr;
     RasterId* ip = kIds ? idView->at(xMin, y) : nullptr;
     const double rowIndex = static_cast<double>(y - s.yMin);
-    const double rRow = kFlat ? 0.0 : cr.origin + cr.dy * rowIndex;
-    const double gRow = kFlat ? 0.0 : cg.origin + cg.dy * rowIndex;
-    const double bRow = kFlat ? 0.0 : cb.origin + cb.dy * rowIndex;
-    const double aRow = kFlat ? 0.0 : ca.origin + ca.dy * rowIndex;
+    shader.row(rowIndex);
     const double zRow = kDepth ? cz.origin + cz.dy * rowIndex : 0.0;
     bool inSpan = false;
     for (int x = xMin; x <= xMax; ++x, w0 += sx0, w1 += sx1, w2 += sx2, p += 4)
@@ -306,207 +506,210 @@ bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView
       {
         ip[x - xMin] = id;
       }
-      if (kFlat)
-      {
-        if (opaque)
-        {
-          std::memcpy(p, &packed, 4);
-        }
-        else
-        {
-          Blend(p, flat);
-        }
-      }
-      else
-      {
-        const float r = Clamp01(rRow + cr.dx * k);
-        const float g = Clamp01(gRow + cg.dx * k);
-        const float b = Clamp01(bRow + cb.dx * k);
-        if (opaque) // out = round(255 c), alpha 255, whatever was there
-        {
-          p[0] = ToByte(255.0f * r);
-          p[1] = ToByte(255.0f * g);
-          p[2] = ToByte(255.0f * b);
-          p[3] = 255;
-        }
-        else
-        {
-          Blend(p, MakeSource(r, g, b, Clamp01(aRow + ca.dx * k)));
-        }
-      }
+      shader.pixel(p, k);
     }
     any = any || inSpan;
   }
   return any;
 }
 
-// Texture coordinate planes (with the texture) for ScanTextured, and the vertex colour when the
-// three are equal.
-struct TexSetup
-{
-  Texture texture;
-  Plane u, v;
-  bool flat = false;
-  float flatColour[4] = {};
-};
-
-// ScanTextured relies on an opaque texel (sa = 255) giving alpha exactly 1.
-static_assert(255.0f * (1.0f / 255.0f) == 1.0f, "255 * (1 / 255) must round to 1 in float");
-
-// Scan for textured triangles: the edge walk and depth test of Scan, then src = Gouraud colour *
-// bilinear texel (s.colour always set). Separate from Scan to keep texturing out of its loops.
 template<bool kDepth, bool kIds, int kChannels>
 bool ScanTextured(const ImageView& img, const DepthView* depthView, const IdView* idView,
-  RasterId id, const Setup& s, const TexSetup& ts)
+  RasterId id, const Setup& s, const TexturedShader<4>& shader)
 {
-  const int xMin = s.xMin;
-  const int xMax = s.xMax;
-  const std::int64_t sx0 = s.stepX[0], sx1 = s.stepX[1], sx2 = s.stepX[2];
-  const std::int64_t sy0 = s.stepY[0], sy1 = s.stepY[1], sy2 = s.stepY[2];
-  // Opaque vertices and a texture without alpha: overwrite, no need to read the target.
-  const bool opaque = s.opaque && kChannels != 4;
-  // Equal vertex colours (white, typically): no colour planes to evaluate per pixel.
-  const bool flat = ts.flat;
-  const float flatColour[4] = { ts.flatColour[0], ts.flatColour[1], ts.flatColour[2],
-    ts.flatColour[3] };
-  const Plane cr = s.colour[0], cg = s.colour[1], cb = s.colour[2], ca = s.colour[3];
-  const Plane cz = s.depth;
-  const Plane cu = ts.u, cv = ts.v;
-  const Texture tex = ts.texture;
-  const bool writeDepth = kDepth && depthView->write;
-
-  bool any = false;
-  std::int64_t r0 = s.w[0], r1 = s.w[1], r2 = s.w[2];
-  for (int y = s.yMin; y <= s.yMax; ++y, r0 += sy0, r1 += sy1, r2 += sy2)
-  {
-    std::int64_t w0 = r0, w1 = r1, w2 = r2;
-    std::uint8_t* p = img.pixel(xMin, y);
-    float* zp = kDepth ? depthView->at(xMin, y) : nullptr;
-    RasterId* ip = kIds ? idView->at(xMin, y) : nullptr;
-    const double rowIndex = static_cast<double>(y - s.yMin);
-    const double rRow = cr.origin + cr.dy * rowIndex;
-    const double gRow = cg.origin + cg.dy * rowIndex;
-    const double bRow = cb.origin + cb.dy * rowIndex;
-    const double aRow = ca.origin + ca.dy * rowIndex;
-    const double uRow = cu.origin + cu.dy * rowIndex;
-    const double vRow = cv.origin + cv.dy * rowIndex;
-    const double zRow = kDepth ? cz.origin + cz.dy * rowIndex : 0.0;
-    bool inSpan = false;
-    for (int x = xMin; x <= xMax; ++x, w0 += sx0, w1 += sx1, w2 += sx2, p += 4)
-    {
-      if ((w0 | w1 | w2) < 0)
-      {
-        if (inSpan)
-        {
-          break; // convex: the span of this row is over
-        }
-        continue;
-      }
-      inSpan = true;
-      const double k = static_cast<double>(x - xMin);
-      if (kDepth)
-      {
-        const float z = static_cast<float>(zRow + cz.dx * k);
-        float* zq = zp + (x - xMin);
-        if (!(z < *zq))
-        {
-          continue;
-        }
-        if (writeDepth)
-        {
-          *zq = z;
-        }
-      }
-      if (kIds)
-      {
-        ip[x - xMin] = id;
-      }
-      float t[4];
-      Bilinear<kChannels>(tex, uRow + cu.dx * k, vRow + cv.dx * k, t);
-      const float r = flat ? flatColour[0] : Clamp01(rRow + cr.dx * k);
-      const float g = flat ? flatColour[1] : Clamp01(gRow + cg.dx * k);
-      const float b = flat ? flatColour[2] : Clamp01(bRow + cb.dx * k);
-      if (opaque) // texel alpha 255, vertex alpha 1: out = round(c * texel), alpha 255
-      {
-        p[0] = ToByte(r * t[0]);
-        p[1] = ToByte(g * t[1]);
-        p[2] = ToByte(b * t[2]);
-        p[3] = 255;
-      }
-      else
-      {
-        const float a = flat ? flatColour[3] : Clamp01(aRow + ca.dx * k);
-        const float sa = a * t[3];                // 255 * alpha
-        const float alpha = sa * (1.0f / 255.0f); // exactly 1 when sa == 255 (static_assert)
-        Blend(
-          p, BlendSource{ r * t[0] * alpha, g * t[1] * alpha, b * t[2] * alpha, sa, 1.0f - alpha });
-      }
-    }
-    any = any || inSpan;
-  }
-  return any;
+  TexturedShader<kChannels> sh;
+  sh.tex = shader.tex;
+  sh.cr = shader.cr;
+  sh.cg = shader.cg;
+  sh.cb = shader.cb;
+  sh.ca = shader.ca;
+  sh.cu = shader.cu;
+  sh.cv = shader.cv;
+  sh.opaque = shader.opaque && kChannels != 4;
+  sh.flat = shader.flat;
+  std::copy(shader.flatColour, shader.flatColour + 4, sh.flatColour);
+  return Scan<kDepth, kIds>(img, depthView, idView, id, s, sh);
 }
 
 template<bool kDepth, bool kIds>
 bool ScanTextured(const ImageView& img, const DepthView* depthView, const IdView* idView,
-  RasterId id, const Setup& s, const TexSetup& ts, int channels)
+  RasterId id, const Setup& s, const TexturedShader<4>& shader, int channels)
 {
   switch (channels)
   {
     case 1:
-      return ScanTextured<kDepth, kIds, 1>(img, depthView, idView, id, s, ts);
+      return ScanTextured<kDepth, kIds, 1>(img, depthView, idView, id, s, shader);
     case 3:
-      return ScanTextured<kDepth, kIds, 3>(img, depthView, idView, id, s, ts);
+      return ScanTextured<kDepth, kIds, 3>(img, depthView, idView, id, s, shader);
     default:
-      return ScanTextured<kDepth, kIds, 4>(img, depthView, idView, id, s, ts);
+      return ScanTextured<kDepth, kIds, 4>(img, depthView, idView, id, s, shader);
   }
 }
 
-// The textured end of Rasterize<true>: colour, depth and (u, v) planes, then the scan. s and basis
-// come from the common set-up (s is completed here); a, b, c are the vertices in the normalised
-// winding. Out of line, and s is taken by reference: inlined, the textured scans ran slower, and a
-// copy of s cost ~10% on 2-pixel triangles (measured).
-RasterResult DrawTextured(const ImageView& target, const DepthView* depth, const IdView* ids,
-  RasterId id, const TextureView& texture, Setup& s, const PlaneBasis& basis, const RasterVertex* a,
-  const RasterVertex* b, const RasterVertex* c)
+// The vertex data DrawSnapped has gathered: colours clamped, in the normalised winding (order).
+struct Vertices
 {
-  const RasterVertex* v[3] = { a, b, c };
-  TexSetup ts;
-  ts.flat = true;
+  float col[3][4];  // clamped RGBA
+  const int* order; // index in the SnappedTriangle of each vertex
+};
+
+// The textured end of DrawSnapped<true>: colour, depth and (u, v) planes, then the walk. s and
+// basis come from the common set-up (s is completed here). Out of line, and s is taken by
+// reference: inlined, the textured scans ran slower, and a copy of s cost ~10% on 2-pixel
+// triangles (measured).
+RasterResult DrawTextured(const ImageView& target, const DepthView* depth, const IdView* ids,
+  RasterId id, const TextureView& texture, Setup& s, const PlaneBasis& basis,
+  const SnappedTriangle& t, const Vertices& vx)
+{
+  const int* o = vx.order;
+  // Built as the 4-channel shader; ScanTextured copies it into the right channel count.
+  TexturedShader<4> sh;
+  sh.flat = true;
+  Plane* planes[4] = { &sh.cr, &sh.cg, &sh.cb, &sh.ca };
   for (int k = 0; k < 4; ++k)
   {
-    float col[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      const RasterVertex& p = *v[i];
-      col[i] = Clamp01(k == 0 ? p.r : k == 1 ? p.g : k == 2 ? p.b : p.a);
-    }
-    s.colour[k] = basis.make(col[0], col[1], col[2]);
-    ts.flat = ts.flat && col[0] == col[1] && col[0] == col[2];
-    ts.flatColour[k] = col[0];
+    const float c0 = vx.col[0][k], c1 = vx.col[1][k], c2 = vx.col[2][k];
+    *planes[k] = basis.make(c0, c1, c2);
+    sh.flat = sh.flat && c0 == c1 && c0 == c2;
+    sh.flatColour[k] = c0;
   }
+  sh.opaque = vx.col[0][3] == 1.0f && vx.col[1][3] == 1.0f && vx.col[2][3] == 1.0f;
   if (depth)
   {
-    s.depth = basis.make(v[0]->depth, v[1]->depth, v[2]->depth);
+    s.depth = basis.make(t.depth[o[0]], t.depth[o[1]], t.depth[o[2]]);
   }
-  ts.texture = MakeTexture(texture);
-  ts.u = basis.make(v[0]->u, v[1]->u, v[2]->u);
-  ts.v = basis.make(v[0]->v, v[1]->v, v[2]->v);
+  sh.tex = MakeTexture(texture);
+  sh.cu = basis.make(t.u[o[0]], t.u[o[1]], t.u[o[2]]);
+  sh.cv = basis.make(t.v[o[0]], t.v[o[1]], t.v[o[2]]);
   const int n = texture.channels;
   bool any;
   if (ids)
   {
-    any = depth ? ScanTextured<true, true>(target, depth, ids, id, s, ts, n)
-                : ScanTextured<false, true>(target, depth, ids, id, s, ts, n);
+    any = depth ? ScanTextured<true, true>(target, depth, ids, id, s, sh, n)
+                : ScanTextured<false, true>(target, depth, ids, id, s, sh, n);
   }
   else
   {
-    any = depth ? ScanTextured<true, false>(target, depth, ids, id, s, ts, n)
-                : ScanTextured<false, false>(target, depth, ids, id, s, ts, n);
+    any = depth ? ScanTextured<true, false>(target, depth, ids, id, s, sh, n)
+                : ScanTextured<false, false>(target, depth, ids, id, s, sh, n);
   }
   return any ? RasterResult::Drawn : RasterResult::Empty;
 }
+
+// The untextured walks with a depth and/or an id buffer, out of line: the untextured entry point
+// inlines only the two painter walks (no depth, no ids), so their register allocation does not
+// depend on the other variants (measured: inlined together, Gouraud ran ~6% slower).
+template<typename Shader>
+CATAR_NOINLINE bool ScanWithBuffers(const ImageView& target, const DepthView* depth,
+  const IdView* ids, RasterId id, const Setup& s, const Shader& shader)
+{
+  if (ids)
+  {
+    return depth ? Scan<true, true>(target, depth, ids, id, s, shader)
+                 : Scan<false, true>(target, depth, ids, id, s, shader);
+  }
+  return Scan<true, false>(target, depth, ids, id, s, shader);
 }
+
+// rasterizeSnappedTriangle without (kTextured = false) or with a texture (non-null).
+template<bool kTextured>
+CATAR_ALWAYS_INLINE RasterResult DrawSnapped(const ImageView& target, const SnappedTriangle& t,
+  const PixelRect& clip, const DepthView* depth, const TextureView* texture, const IdView* ids,
+  RasterId id)
+{
+  // Normalise the winding to a positive doubled area.
+  Grid g;
+  int order[3];
+  if (Normalise(t.x, t.y, g, order) == 0)
+  {
+    return RasterResult::Degenerate;
+  }
+
+  // Bounding box of the covered pixel centres, clipped to the clip rectangle and the image.
+  const PixelRect area{ std::max(clip.x0, 0), std::max(clip.y0, 0), std::min(clip.x1, target.width),
+    std::min(clip.y1, target.height) };
+  Setup s;
+  CentreRange(g, area, s.xMin, s.yMin, s.xMax, s.yMax);
+  if (s.xMin > s.xMax || s.yMin > s.yMax)
+  {
+    return RasterResult::Empty;
+  }
+  EdgeSetup(g, static_cast<std::int64_t>(s.xMin) * kOne, static_cast<std::int64_t>(s.yMin) * kOne,
+    s.w, s.stepX, s.stepY);
+
+  // Attribute planes in pixel units, relative to the (snapped) vertex 0.
+  const double inv = 1.0 / static_cast<double>(kOne);
+  const double x10 = static_cast<double>(g.X[1] - g.X[0]) * inv;
+  const double y10 = static_cast<double>(g.Y[1] - g.Y[0]) * inv;
+  const double x20 = static_cast<double>(g.X[2] - g.X[0]) * inv;
+  const double y20 = static_cast<double>(g.Y[2] - g.Y[0]) * inv;
+  const PlaneBasis basis{ x10, y10, x20, y20, 1.0 / (x10 * y20 - y10 * x20),
+    static_cast<double>(s.xMin) - static_cast<double>(g.X[0]) * inv,
+    static_cast<double>(s.yMin) - static_cast<double>(g.Y[0]) * inv };
+
+  Vertices vx;
+  vx.order = order;
+  for (int i = 0; i < 3; ++i)
+  {
+    const float* c = t.rgba[order[i]];
+    vx.col[i][0] = Clamp01(c[0]);
+    vx.col[i][1] = Clamp01(c[1]);
+    vx.col[i][2] = Clamp01(c[2]);
+    vx.col[i][3] = Clamp01(c[3]);
+  }
+  if constexpr (kTextured)
+  {
+    return DrawTextured(target, depth, ids, id, *texture, s, basis, t, vx);
+  }
+  const float(&col)[3][4] = vx.col;
+  bool flat = true;
+  for (int c = 0; c < 4; ++c)
+  {
+    flat = flat && col[0][c] == col[1][c] && col[0][c] == col[2][c];
+  }
+  const bool opaque = col[0][3] == 1.0f && col[1][3] == 1.0f && col[2][3] == 1.0f;
+  if (depth)
+  {
+    s.depth = basis.make(t.depth[order[0]], t.depth[order[1]], t.depth[order[2]]);
+  }
+
+  bool any;
+  if (flat)
+  {
+    FlatShader sh;
+    sh.source = MakeSource(col[0][0], col[0][1], col[0][2], col[0][3]);
+    const std::uint8_t bytes[4] = { ToByte(sh.source.r), ToByte(sh.source.g), ToByte(sh.source.b),
+      255 };
+    std::memcpy(&sh.packed, bytes, 4);
+    sh.opaque = opaque;
+    any = depth || ids ? ScanWithBuffers(target, depth, ids, id, s, sh)
+                       : Scan<false, false>(target, depth, ids, id, s, sh);
+  }
+  else
+  {
+    GouraudShader sh;
+    sh.cr = basis.make(col[0][0], col[1][0], col[2][0]);
+    sh.cg = basis.make(col[0][1], col[1][1], col[2][1]);
+    sh.cb = basis.make(col[0][2], col[1][2], col[2][2]);
+    if (!opaque) // the opaque shader never reads alpha
+    {
+      sh.ca = basis.make(col[0][3], col[1][3], col[2][3]);
+    }
+    sh.opaque = opaque;
+    any = depth || ids ? ScanWithBuffers(target, depth, ids, id, s, sh)
+                       : Scan<false, false>(target, depth, ids, id, s, sh);
+  }
+  return any ? RasterResult::Drawn : RasterResult::Empty;
+}
+
+// The textured variant, out of line: the public function inlines only the untextured one.
+CATAR_NOINLINE RasterResult RasterizeSnappedTextured(const ImageView& target,
+  const SnappedTriangle& t, const PixelRect& clip, const DepthView* depth,
+  const TextureView* texture, const IdView* ids, RasterId id)
+{
+  return DrawSnapped<true>(target, t, clip, depth, texture, ids, id);
+}
+} // namespace
 
 const char* toString(RasterResult result)
 {
@@ -552,34 +755,78 @@ void sampleTexture(const TextureView& texture, float u, float v, float rgba[4])
   }
 }
 
-namespace
+PixelRect coveredPixelBounds(
+  const std::int32_t x[3], const std::int32_t y[3], const PixelRect& clip)
 {
-// The untextured scans with a depth and/or an id buffer, out of line: the public function inlines
-// only the two painter scans (no depth, no ids), so their register allocation does not depend on
-// the other variants (measured: inlined together, Gouraud ran ~6% slower).
-CATAR_NOINLINE bool ScanWithBuffers(const ImageView& target, const DepthView* depth,
-  const IdView* ids, RasterId id, const Setup& s, bool flat)
-{
-  if (flat)
+  // Most calls are for triangles about a pixel in size at random places: a mispredicted branch
+  // costs about as much as the whole test, so past the first test (no pixel centre in the
+  // bounding box: most triangles of dense meshes, so mostly predicted) the common path has no
+  // data-dependent branch (measured, bunny-like triangles: 23 -> 14 ns per call). Signed >> is
+  // an arithmetic shift (floor division by 2^k) with every supported compiler, and by definition
+  // since C++20.
+  constexpr int kBits = kRasterSubPixelBits;
+  const std::int64_t minX = Min3(x[0], x[1], x[2]), maxX = Max3(x[0], x[1], x[2]);
+  const std::int64_t minY = Min3(y[0], y[1], y[2]), maxY = Max3(y[0], y[1], y[2]);
+  const int xMin = static_cast<int>(std::max<std::int64_t>((minX + kOne - 1) >> kBits, clip.x0));
+  const int yMin = static_cast<int>(std::max<std::int64_t>((minY + kOne - 1) >> kBits, clip.y0));
+  const int xMax = static_cast<int>(std::min<std::int64_t>(maxX >> kBits, clip.x1 - 1LL));
+  const int yMax = static_cast<int>(std::min<std::int64_t>(maxY >> kBits, clip.y1 - 1LL));
+  if ((xMin > xMax) | (yMin > yMax))
   {
-    if (ids)
-    {
-      return depth ? Scan<true, true, true>(target, depth, ids, id, s)
-                   : Scan<true, false, true>(target, depth, ids, id, s);
-    }
-    return Scan<true, true, false>(target, depth, ids, id, s);
+    return PixelRect{};
   }
-  if (ids)
+  const std::int64_t ax = x[0], ay = y[0];
+  const std::int64_t area = (x[1] - ax) * (y[2] - ay) - (y[1] - ay) * (x[2] - ax);
+  if ((xMax - xMin > 1) | (yMax - yMin > 1))
   {
-    return depth ? Scan<false, true, true>(target, depth, ids, id, s)
-                 : Scan<false, false, true>(target, depth, ids, id, s);
+    return area == 0 ? PixelRect{} : PixelRect{ xMin, yMin, xMax + 1, yMax + 1 };
   }
-  return Scan<false, true, false>(target, depth, ids, id, s);
+  // At most 2 x 2 centres: the coverage rule (as EdgeSetup and Scan apply it, in the winding of
+  // Normalise) at the centres (xMin + i, yMin + j). The winding stays a branch: a mesh's
+  // triangles seen from the camera mostly share one, so it is predicted.
+  const bool flip = area < 0;
+  const std::int64_t bx = flip ? x[2] : x[1], by = flip ? y[2] : y[1];
+  const std::int64_t cx = flip ? x[1] : x[2], cy = flip ? y[1] : y[2];
+  const std::int64_t px = static_cast<std::int64_t>(xMin) * kOne;
+  const std::int64_t py = static_cast<std::int64_t>(yMin) * kOne;
+  const auto edge = [px, py](std::int64_t x0, std::int64_t y0, std::int64_t x1, std::int64_t y1,
+                      std::int64_t& w, std::int64_t& sx, std::int64_t& sy) {
+    const std::int64_t ex = x1 - x0, ey = y1 - y0;
+    const bool topLeft = (ey < 0) | ((ey == 0) & (ex > 0));
+    w = ex * (py - y0) - ey * (px - x0) - (topLeft ? 0 : 1);
+    sx = -ey * kOne;
+    sy = ex * kOne;
+  };
+  std::int64_t w0, sx0, sy0, w1, sx1, sy1, w2, sx2, sy2;
+  edge(bx, by, cx, cy, w0, sx0, sy0);
+  edge(cx, cy, ax, ay, w1, sx1, sy1);
+  edge(ax, ay, bx, by, w2, sx2, sy2);
+  const bool valid = area != 0; // a degenerate triangle covers nothing
+  const bool wide = xMax > xMin, tall = yMax > yMin;
+  const bool c00 = valid & ((w0 | w1 | w2) >= 0);
+  const bool c10 = valid & wide & (((w0 + sx0) | (w1 + sx1) | (w2 + sx2)) >= 0);
+  const bool c01 = valid & tall & (((w0 + sy0) | (w1 + sy1) | (w2 + sy2)) >= 0);
+  const bool c11 =
+    valid & wide & tall & (((w0 + sx0 + sy0) | (w1 + sx1 + sy1) | (w2 + sx2 + sy2)) >= 0);
+  const int row0 = c00 | c10, row1 = c01 | c11;
+  const int col0 = c00 | c01, col1 = c10 | c11;
+  const int any = row0 | row1; // all four 0 (empty) when nothing is covered
+  return PixelRect{ any * (xMin + 1 - col0), any * (yMin + 1 - row0), any * (xMin + 1 + col1),
+    any * (yMin + 1 + row1) };
 }
 
-// rasterizeTriangle without (kTextured = false) or with a texture (non-null).
-template<bool kTextured>
-CATAR_ALWAYS_INLINE RasterResult Rasterize(const ImageView& target, const RasterVertex& v0,
+RasterResult rasterizeSnappedTriangle(const ImageView& target, const SnappedTriangle& t,
+  const PixelRect& clip, const DepthView* depth, const TextureView* texture, const IdView* ids,
+  RasterId id)
+{
+  if (texture)
+  {
+    return RasterizeSnappedTextured(target, t, clip, depth, texture, ids, id);
+  }
+  return DrawSnapped<false>(target, t, clip, depth, nullptr, ids, id);
+}
+
+RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
   const TextureView* texture, const IdView* ids, RasterId id)
 {
@@ -596,7 +843,7 @@ CATAR_ALWAYS_INLINE RasterResult Rasterize(const ImageView& target, const Raster
   {
     return RasterResult::InvalidInput;
   }
-  if (kTextured && !IsValid(*texture))
+  if (texture && !IsValid(*texture))
   {
     return RasterResult::InvalidInput;
   }
@@ -604,140 +851,21 @@ CATAR_ALWAYS_INLINE RasterResult Rasterize(const ImageView& target, const Raster
   {
     return RasterResult::OutsideGuardBand;
   }
-
-  // Snap and normalise the winding to a positive doubled area.
   const RasterVertex* v[3] = { &v0, &v1, &v2 };
-  std::int64_t X[3], Y[3];
+  SnappedTriangle t;
   for (int i = 0; i < 3; ++i)
   {
-    X[i] = Snap(v[i]->x);
-    Y[i] = Snap(v[i]->y);
+    t.x[i] = snapToGrid(v[i]->x);
+    t.y[i] = snapToGrid(v[i]->y);
+    t.rgba[i][0] = v[i]->r;
+    t.rgba[i][1] = v[i]->g;
+    t.rgba[i][2] = v[i]->b;
+    t.rgba[i][3] = v[i]->a;
+    t.depth[i] = v[i]->depth;
+    t.u[i] = v[i]->u;
+    t.v[i] = v[i]->v;
   }
-  const std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
-  if (area == 0)
-  {
-    return RasterResult::Degenerate;
-  }
-  if (area < 0)
-  {
-    std::swap(v[1], v[2]);
-    std::swap(X[1], X[2]);
-    std::swap(Y[1], Y[2]);
-  }
-
-  // Bounding box of the covered pixel centres, clipped to the clip rectangle and the image.
-  const int cx0 = std::max(clip.x0, 0);
-  const int cy0 = std::max(clip.y0, 0);
-  const int cx1 = std::min(clip.x1, target.width);  // exclusive
-  const int cy1 = std::min(clip.y1, target.height); // exclusive
-  const std::int64_t bx0 = CeilToPixel(std::min({ X[0], X[1], X[2] }));
-  const std::int64_t by0 = CeilToPixel(std::min({ Y[0], Y[1], Y[2] }));
-  const std::int64_t bx1 = FloorToPixel(std::max({ X[0], X[1], X[2] }));
-  const std::int64_t by1 = FloorToPixel(std::max({ Y[0], Y[1], Y[2] }));
-  Setup s;
-  s.xMin = static_cast<int>(std::max<std::int64_t>(bx0, cx0));
-  s.yMin = static_cast<int>(std::max<std::int64_t>(by0, cy0));
-  s.xMax = static_cast<int>(std::min<std::int64_t>(bx1, cx1 - 1));
-  s.yMax = static_cast<int>(std::min<std::int64_t>(by1, cy1 - 1));
-  if (s.xMin > s.xMax || s.yMin > s.yMax)
-  {
-    return RasterResult::Empty;
-  }
-
-  // Edge i is the one opposite vertex i: a = vertex i+1, b = vertex i+2.
-  const std::int64_t px = static_cast<std::int64_t>(s.xMin) * kOne;
-  const std::int64_t py = static_cast<std::int64_t>(s.yMin) * kOne;
-  for (int i = 0; i < 3; ++i)
-  {
-    const int a = (i + 1) % 3;
-    const int b = (i + 2) % 3;
-    const std::int64_t ex = X[b] - X[a];
-    const std::int64_t ey = Y[b] - Y[a];
-    const bool topLeft = ey < 0 || (ey == 0 && ex > 0);
-    s.w[i] = ex * (py - Y[a]) - ey * (px - X[a]) - (topLeft ? 0 : 1);
-    s.stepX[i] = -ey * kOne;
-    s.stepY[i] = ex * kOne;
-  }
-
-  // Attribute planes in pixel units, relative to the (snapped) vertex 0.
-  const double inv = 1.0 / static_cast<double>(kOne);
-  const double x10 = static_cast<double>(X[1] - X[0]) * inv;
-  const double y10 = static_cast<double>(Y[1] - Y[0]) * inv;
-  const double x20 = static_cast<double>(X[2] - X[0]) * inv;
-  const double y20 = static_cast<double>(Y[2] - Y[0]) * inv;
-  const PlaneBasis basis{ x10, y10, x20, y20, 1.0 / (x10 * y20 - y10 * x20),
-    static_cast<double>(s.xMin) - static_cast<double>(X[0]) * inv,
-    static_cast<double>(s.yMin) - static_cast<double>(Y[0]) * inv };
-
-  float col[3][4];
-  for (int i = 0; i < 3; ++i)
-  {
-    col[i][0] = Clamp01(v[i]->r);
-    col[i][1] = Clamp01(v[i]->g);
-    col[i][2] = Clamp01(v[i]->b);
-    col[i][3] = Clamp01(v[i]->a);
-  }
-  bool flat = true;
-  for (int c = 0; c < 4; ++c)
-  {
-    flat = flat && col[0][c] == col[1][c] && col[0][c] == col[2][c];
-  }
-  s.opaque = col[0][3] == 1.0f && col[1][3] == 1.0f && col[2][3] == 1.0f;
-  if constexpr (kTextured)
-  {
-    return DrawTextured(target, depth, ids, id, *texture, s, basis, v[0], v[1], v[2]);
-  }
-  if (flat)
-  {
-    s.flat = MakeSource(col[0][0], col[0][1], col[0][2], col[0][3]);
-    s.flatBytes[0] = ToByte(s.flat.r);
-    s.flatBytes[1] = ToByte(s.flat.g);
-    s.flatBytes[2] = ToByte(s.flat.b);
-    s.flatBytes[3] = 255;
-  }
-  else
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      s.colour[c] = basis.make(col[0][c], col[1][c], col[2][c]);
-    }
-  }
-  if (depth)
-  {
-    s.depth = basis.make(v[0]->depth, v[1]->depth, v[2]->depth);
-  }
-
-  bool any;
-  if (depth || ids)
-  {
-    any = ScanWithBuffers(target, depth, ids, id, s, flat);
-  }
-  else
-  {
-    any = flat ? Scan<true, false, false>(target, depth, ids, id, s)
-               : Scan<false, false, false>(target, depth, ids, id, s);
-  }
-  return any ? RasterResult::Drawn : RasterResult::Empty;
-}
-
-// The textured variant, out of line: the public function inlines only the untextured one.
-CATAR_NOINLINE RasterResult RasterizeTextured(const ImageView& target, const RasterVertex& v0,
-  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
-  const TextureView* texture, const IdView* ids, RasterId id)
-{
-  return Rasterize<true>(target, v0, v1, v2, clip, depth, texture, ids, id);
-}
-}
-
-RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
-  const RasterVertex& v1, const RasterVertex& v2, const PixelRect& clip, const DepthView* depth,
-  const TextureView* texture, const IdView* ids, RasterId id)
-{
-  if (texture)
-  {
-    return RasterizeTextured(target, v0, v1, v2, clip, depth, texture, ids, id);
-  }
-  return Rasterize<false>(target, v0, v1, v2, clip, depth, nullptr, ids, id);
+  return rasterizeSnappedTriangle(target, t, clip, depth, texture, ids, id);
 }
 
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,

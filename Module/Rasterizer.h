@@ -208,6 +208,56 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
 RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   const RasterVertex& v1, const RasterVertex& v2, const DepthView* depth = nullptr,
   const TextureView* texture = nullptr, const IdView* ids = nullptr, RasterId id = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Batches. rasterizeTriangle checks and snaps its three vertices on every call. A caller that
+// draws many triangles sharing vertices, or draws each triangle in several clip rectangles (bands
+// drawn in parallel), checks and snaps each vertex once (snapToGrid), finds the rows each triangle
+// can draw (coveredPixelBounds) and draws with rasterizeSnappedTriangle: the pixels are exactly
+// those rasterizeTriangle draws.
+
+/// A pixel coordinate snapped to the 1/256 grid as rasterizeTriangle snaps vertex positions:
+/// floor(256 c + 0.5) (exact halves rounded up). c must be finite with |c| <= kRasterGuardBand;
+/// the result then fits in 29 bits. Inline: a batch snaps every point of its meshes.
+inline std::int32_t snapToGrid(double c)
+{
+  const double v = c * static_cast<double>(1 << kRasterSubPixelBits) + 0.5; // exact
+  const auto t = static_cast<std::int32_t>(v); // truncates towards zero
+  return static_cast<double>(t) > v ? t - 1 : t;
+}
+
+/// A triangle whose vertex positions are on the 1/256 grid (snapToGrid) and whose vertices passed
+/// rasterizeTriangle's checks (finite attributes, inside the guard band). Either winding.
+struct SnappedTriangle
+{
+  std::int32_t x[3] = {}; ///< columns, 1/256 px
+  std::int32_t y[3] = {}; ///< rows (down), 1/256 px
+  float rgba[3][4] = {};  ///< RGBA of each vertex (clamped to [0, 1] when drawn)
+  float depth[3] = {};    ///< used only with a depth buffer
+  float u[3] = {};        ///< used only with a texture
+  float v[3] = {};        ///< used only with a texture
+};
+
+/// The pixels inside clip that a triangle with these snapped vertex positions (either winding)
+/// can draw: a rectangle holding every pixel centre it covers, empty (x0 >= x1 or y0 >= y1) when it
+/// covers none of clip's. When the pixel centres of clip inside the triangle's bounding box span
+/// at most 2 x 2 pixels the result is exact (the bounding box of the covered centres, found with
+/// the coverage rule), so triangles about a pixel in size that fall between pixel centres are
+/// recognised before any per-clip-rectangle work; otherwise it is the bounding box of those
+/// centres. A degenerate triangle (zero snapped area) gives an empty rectangle.
+/// clip is not intersected with any image: pass the image's rectangle (or a part of it).
+PixelRect coveredPixelBounds(
+  const std::int32_t x[3], const std::int32_t y[3], const PixelRect& clip);
+
+/// rasterizeTriangle for a snapped triangle: draws exactly the pixels, colours, depths and ids
+/// rasterizeTriangle draws for vertices that snap to t's positions and carry t's attributes.
+/// Nothing is checked -- the caller guarantees finite attributes, positions snapped from inside
+/// the guard band, a target with data and a positive size, depth and id buffers at least as large
+/// as the target, and a valid texture -- so the result is Drawn, Empty or Degenerate.
+/// Thread-safe for disjoint clip rectangles; allocates nothing.
+RasterResult rasterizeSnappedTriangle(const ImageView& target, const SnappedTriangle& t,
+  const PixelRect& clip, const DepthView* depth = nullptr, const TextureView* texture = nullptr,
+  const IdView* ids = nullptr, RasterId id = 0);
 }
 
 #endif

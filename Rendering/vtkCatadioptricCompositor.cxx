@@ -5,7 +5,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricImageSupport.h"
-#include "vtkCellArray.h"
+#include "vtkCatadioptricTriangleBins.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -30,31 +30,39 @@ vtkStandardNewMacro(vtkCatadioptricCompositor);
 
 namespace
 {
-struct Triangle
+// `kept` with n tuples of nc components: reused when nothing but `kept` holds it (the pipeline
+// removed it from the last output and no one downstream kept it), else a new array. A new
+// 1328x1048 id image is 11 MB that the system must map and zero again at first touch, every
+// frame.
+template<typename ArrayT>
+ArrayT* KeptArray(vtkSmartPointer<ArrayT>& kept, int nc, vtkIdType n)
 {
-  catar::RasterVertex V[3];
-  double Depth;
-  double YMin;
-  double YMax;
-  int Texture;        // index into the textures, -1 for none
-  bool Opaque;        // DEPTH_BUFFER: drawn in the first pass, writes depth
-  catar::RasterId Id; // meshIndex * 2^32 + cellId (OutputVisibleTriangle)
-};
+  if (!kept || kept->GetReferenceCount() > 1)
+  {
+    kept = vtkSmartPointer<ArrayT>::New();
+  }
+  kept->SetNumberOfComponents(nc);
+  kept->SetNumberOfTuples(n);
+  return kept;
+}
 
-// The bands of RequestData with a depth buffer (depth: width x height floats, top row first, or
-// null) and/or an id buffer (ids: the output array, VTK row order, or null). Each band initialises
-// its own rows of both buffers. In depth mode the opaque triangles come first and write depth; the
-// others only test it.
-void DrawWithBuffers(const catar::ImageView& view, const std::vector<Triangle>& triangles,
-  const std::vector<catar::TextureView>& textures, int bandHeight, float* depth,
+// Draws the binned triangles onto view, band by band in parallel, each band its own triangles in
+// their order, so the drawing order holds within every pixel. Each band first writes its rows of
+// the background -- background(begin, end) for the pixels [begin, end) of the output, VTK row
+// order -- which saves a parallel loop of its own and draws onto rows still in the cache. depth
+// (width x height floats, top row first) and ids (the output array, VTK row order) may be null;
+// each band initialises its own rows of both. With a depth buffer the opaque triangles (first in
+// the bins' order) write depth and the others only test it.
+template<typename Background>
+void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& bins,
+  const std::vector<catar::TextureView>& textures, const Background& background, float* depth,
   catar::RasterId* ids)
 {
   const int width = view.width;
   const int height = view.height;
   const std::ptrdiff_t w = width;
-  const bool depthMode = depth != nullptr;
   catar::DepthView write;
-  if (depthMode)
+  if (depth)
   {
     write.data = depth;
     write.width = width;
@@ -71,15 +79,15 @@ void DrawWithBuffers(const catar::ImageView& view, const std::vector<Triangle>& 
     idView.height = height;
     idView.rowStride = -w;
   }
-  const int nBands = (height + bandHeight - 1) / bandHeight;
-  vtkSMPTools::For(0, nBands, 1, [&](vtkIdType b0, vtkIdType b1) {
-    for (vtkIdType b = b0; b < b1; ++b)
+  vtkSMPTools::For(0, bins.GetNumberOfBands(), 1, [&](vtkIdType i0, vtkIdType i1) {
+    for (vtkIdType i = i0; i < i1; ++i)
     {
-      const catar::PixelRect band{ 0, static_cast<int>(b * bandHeight), width,
-        static_cast<int>(std::min<vtkIdType>(height, (b + 1) * bandHeight)) };
+      const int b = bins.GetBandByLoad(static_cast<int>(i));
+      const catar::PixelRect band = bins.GetBand(b);
+      background(w * (height - band.y1), w * (height - band.y0)); // rows y1 - 1 ... y0
       for (int y = band.y0; y < band.y1; ++y)
       {
-        if (depthMode)
+        if (depth)
         {
           std::fill(write.at(0, y), write.at(0, y) + width, std::numeric_limits<float>::infinity());
         }
@@ -88,22 +96,21 @@ void DrawWithBuffers(const catar::ImageView& view, const std::vector<Triangle>& 
           std::fill(idView.at(0, y), idView.at(0, y) + width, catar::RasterId(-1));
         }
       }
-      for (const Triangle& t : triangles)
-      {
-        if (t.YMax < band.y0 - 0.5 || t.YMin > band.y1 - 0.5)
-        {
-          continue;
-        }
-        catar::rasterizeTriangle(view, t.V[0], t.V[1], t.V[2], band,
-          depthMode ? (t.Opaque ? &write : &test) : nullptr,
-          t.Texture >= 0 ? &textures[t.Texture] : nullptr, ids ? &idView : nullptr, t.Id);
-      }
+      catar::SnappedTriangle t;
+      vtkCatadioptricTriangleBins::Info info;
+      bins.ForEachTriangle(b, [&](std::uint32_t ref) {
+        bins.Get(ref, t, info);
+        catar::rasterizeSnappedTriangle(view, t, band,
+          depth ? (info.Opaque ? &write : &test) : nullptr,
+          info.Texture >= 0 ? &textures[info.Texture] : nullptr, ids ? &idView : nullptr, info.Id);
+      });
     }
   });
 }
 } // namespace
 
 vtkCatadioptricCompositor::vtkCatadioptricCompositor()
+  : Bins(new vtkCatadioptricTriangleBins)
 {
   this->SetNumberOfInputPorts(3);
   this->SetColorArrayName("Colors");
@@ -255,6 +262,8 @@ int vtkCatadioptricCompositor::RequestData(
   output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
   output->SetOrigin(0, 0, 0);
   output->SetSpacing(1, 1, 1);
+  // vtkImageData keeps its scalars through the pipeline's PrepareForNewData and AllocateScalars
+  // reuses them when no one else holds them: the image is not allocated again every frame.
   output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
   vtkUnsignedCharArray* outScalars =
     vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
@@ -262,17 +271,21 @@ int vtkCatadioptricCompositor::RequestData(
   unsigned char* out = outScalars->GetPointer(0);
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
 
-  // Background: the frame (grey and RGB widened to RGBA), or a colour.
-  if (frame)
-  {
-    vtkCatadioptricImageSupport::CopyFrame(
-      static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0)),
-      frameComponents, nPixels, out);
-  }
-  else
-  {
-    vtkCatadioptricImageSupport::FillColor(this->BackgroundColor, nPixels, out);
-  }
+  // Background, written band by band with the triangles: the frame (grey and RGB widened to
+  // RGBA), or a colour.
+  const unsigned char* frameData = frame
+    ? static_cast<const unsigned char*>(frame->GetPointData()->GetScalars()->GetVoidPointer(0))
+    : nullptr;
+  const auto background = [&](vtkIdType begin, vtkIdType end) {
+    if (frameData)
+    {
+      vtkCatadioptricImageSupport::CopyFramePixels(frameData, frameComponents, begin, end, out);
+    }
+    else
+    {
+      vtkCatadioptricImageSupport::FillColorPixels(this->BackgroundColor, begin, end, out);
+    }
+  };
   this->UpdateProgress(0.2);
 
   // Textures (port 2): unsigned char images, 1, 3 or 4 components, row 0 at the bottom.
@@ -303,8 +316,10 @@ int vtkCatadioptricCompositor::RequestData(
     }
   }
 
-  // Triangles in painter order.
-  std::vector<Triangle> triangles;
+  // The meshes' arrays, checked here; the bins read them (in parallel, with typed access).
+  std::vector<vtkCatadioptricTriangleBins::Mesh> meshes;
+  const float solid[4] = { static_cast<float>(this->Color[0]), static_cast<float>(this->Color[1]),
+    static_cast<float>(this->Color[2]), 1.0f };
   for (int m = 0; m < nMeshes; ++m)
   {
     vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
@@ -312,10 +327,13 @@ int vtkCatadioptricCompositor::RequestData(
     {
       continue;
     }
-    vtkDataArray* pixels = mesh->GetPointData()->GetArray("ImageCoordinates");
-    vtkDataArray* visible = mesh->GetCellData()->GetArray("Visible");
-    vtkDataArray* depth = mesh->GetCellData()->GetArray("CentroidDepth");
-    if (!pixels || pixels->GetNumberOfComponents() != 2 || !visible || !depth)
+    vtkCatadioptricTriangleBins::Mesh in;
+    in.Data = mesh;
+    in.Key = m;
+    in.Pixels = mesh->GetPointData()->GetArray("ImageCoordinates");
+    in.Visible = mesh->GetCellData()->GetArray("Visible");
+    in.CentroidDepth = mesh->GetCellData()->GetArray("CentroidDepth");
+    if (!in.Pixels || in.Pixels->GetNumberOfComponents() != 2 || !in.Visible || !in.CentroidDepth)
     {
       vtkErrorMacro("Mesh " << m
                             << " lacks ImageCoordinates/Visible/CentroidDepth: run "
@@ -323,12 +341,11 @@ int vtkCatadioptricCompositor::RequestData(
       return 0;
     }
     // DEPTH_BUFFER: the per-vertex depth.
-    vtkDataArray* pathLength = nullptr;
     if (depthMode)
     {
-      pathLength = mesh->GetPointData()->GetArray("PathLength");
-      if (!pathLength || pathLength->GetNumberOfComponents() != 1 ||
-        pathLength->GetNumberOfTuples() != mesh->GetNumberOfPoints())
+      in.PathLength = mesh->GetPointData()->GetArray("PathLength");
+      if (!in.PathLength || in.PathLength->GetNumberOfComponents() != 1 ||
+        in.PathLength->GetNumberOfTuples() != mesh->GetNumberOfPoints())
       {
         vtkErrorMacro("Mesh " << m
                               << " has no PathLength point array (1 component, one value per "
@@ -338,13 +355,12 @@ int vtkCatadioptricCompositor::RequestData(
       }
     }
     // OutputVisibleTriangle: the cells' original ids, when the mesh has them.
-    vtkDataArray* originalIds = nullptr;
     if (wantIds)
     {
-      originalIds = mesh->GetCellData()->GetArray("OriginalCellId");
-      if (originalIds &&
-        (originalIds->GetNumberOfComponents() != 1 ||
-          originalIds->GetNumberOfTuples() != mesh->GetNumberOfCells()))
+      in.OriginalIds = mesh->GetCellData()->GetArray("OriginalCellId");
+      if (in.OriginalIds &&
+        (in.OriginalIds->GetNumberOfComponents() != 1 ||
+          in.OriginalIds->GetNumberOfTuples() != mesh->GetNumberOfCells()))
       {
         vtkErrorMacro("Mesh " << m
                               << ": the cell array OriginalCellId must have 1 component and one "
@@ -352,182 +368,103 @@ int vtkCatadioptricCompositor::RequestData(
         return 0;
       }
     }
-    const catar::RasterId meshKey = static_cast<catar::RasterId>(m) << 32;
-    const float solid[4] = { static_cast<float>(this->Color[0]), static_cast<float>(this->Color[1]),
-      static_cast<float>(this->Color[2]), 1.0f };
     const vtkCatadioptricColorArray color(mesh, this->ColorArrayName, solid);
     if (color.HasArray() && color.GetNumberOfComponents() < 1)
     {
       vtkErrorMacro("Colour array " << this->ColorArrayName << " has no components.");
       return 0;
     }
-    const float opacity = static_cast<float>(this->Opacity);
     // Texture: the one the mesh names in field data (TextureIndex), else the first, when the mesh
     // has texture coordinates.
     // A negative TextureIndex leaves the mesh untextured.
-    vtkDataArray* tcoords =
-      textures.empty() ? nullptr : vtkCatadioptricImageSupport::TextureCoordinates(mesh);
-    int texture = -1;
-    if (tcoords)
+    in.TCoords = textures.empty() ? nullptr : vtkCatadioptricImageSupport::TextureCoordinates(mesh);
+    if (in.TCoords)
     {
-      texture = 0;
+      in.Texture = 0;
       if (vtkDataArray* index = mesh->GetFieldData()->GetArray("TextureIndex"))
       {
-        texture = static_cast<int>(index->GetComponent(0, 0));
+        in.Texture = static_cast<int>(index->GetComponent(0, 0));
       }
-      if (texture < 0)
+      if (in.Texture < 0)
       {
-        tcoords = nullptr;
-        texture = -1;
+        in.TCoords = nullptr;
+        in.Texture = -1;
       }
-      else if (texture >= static_cast<int>(textures.size()))
+      else if (in.Texture >= static_cast<int>(textures.size()))
       {
-        vtkErrorMacro("Mesh " << m << " asks for texture " << texture << " but " << textures.size()
-                              << " are connected.");
+        vtkErrorMacro("Mesh " << m << " asks for texture " << in.Texture << " but "
+                              << textures.size() << " are connected.");
         return 0;
       }
-    }
-    const vtkIdType first = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
-    vtkCellArray* polys = mesh->GetPolys();
-    vtkNew<vtkIdList> ids;
-    const vtkIdType nPolys = polys->GetNumberOfCells();
-    triangles.reserve(triangles.size() + static_cast<size_t>(nPolys));
-    for (vtkIdType c = 0; c < nPolys; ++c)
-    {
-      const vtkIdType cellId = first + c;
-      polys->GetCellAtId(c, ids);
-      const vtkIdType n = ids->GetNumberOfIds();
-      if (n < 3 || visible->GetComponent(cellId, 0) == 0)
+      else
       {
-        this->NumberOfSkippedTriangles += std::max<vtkIdType>(0, n - 2);
-        continue;
-      }
-      auto vertex = [&](vtkIdType pid, catar::RasterVertex& v) {
-        double px[2];
-        pixels->GetTuple(pid, px);
-        v.x = px[0];
-        v.y = px[1];
-        float rgba[4];
-        color.Get(pid, cellId, rgba);
-        v.r = rgba[0];
-        v.g = rgba[1];
-        v.b = rgba[2];
-        v.a = rgba[3] * opacity;
-        if (tcoords)
-        {
-          v.u = static_cast<float>(tcoords->GetComponent(pid, 0));
-          v.v = static_cast<float>(tcoords->GetComponent(pid, 1));
-        }
-        if (pathLength)
-        {
-          v.depth = static_cast<float>(pathLength->GetComponent(pid, 0));
-        }
-      };
-      catar::RasterId id = 0;
-      if (wantIds)
-      {
-        const double original = originalIds ? originalIds->GetComponent(cellId, 0) : 0.0;
-        id = meshKey +
-          (originalIds ? static_cast<catar::RasterId>(original)
-                       : static_cast<catar::RasterId>(cellId));
-      }
-      // Fan triangulation of polygons.
-      for (vtkIdType k = 1; k + 1 < n; ++k)
-      {
-        Triangle t;
-        vertex(ids->GetId(0), t.V[0]);
-        vertex(ids->GetId(k), t.V[1]);
-        vertex(ids->GetId(k + 1), t.V[2]);
-        t.Depth = depth->GetComponent(cellId, 0);
-        t.YMin = std::min({ t.V[0].y, t.V[1].y, t.V[2].y });
-        t.YMax = std::max({ t.V[0].y, t.V[1].y, t.V[2].y });
-        t.Texture = texture;
-        t.Opaque = t.V[0].a >= 1.0f && t.V[1].a >= 1.0f && t.V[2].a >= 1.0f &&
-          (texture < 0 || opaqueTexture[texture]);
-        t.Id = id;
-        triangles.push_back(t);
+        in.TextureOpaque = opaqueTexture[in.Texture] != 0;
       }
     }
+    meshes.push_back(in);
   }
-  if (nMeshes > 1)
+
+  // The triangles, in drawing order, binned into the bands they meet: painter order (cell
+  // order, one far-to-near order by CentroidDepth across meshes, each mesh keeping its own order
+  // among equal depths), and with a depth buffer the opaque triangles first.
+  vtkCatadioptricTriangleBins::Options options;
+  options.Width = width;
+  options.Height = height;
+  options.ColorArrayName = this->ColorArrayName;
+  std::copy(solid, solid + 4, options.Solid);
+  options.Opacity = static_cast<float>(this->Opacity);
+  options.MergeByDepth = nMeshes > 1;
+  options.DepthBuffer = depthMode;
+  options.Ids = wantIds;
+  std::string binError;
+  if (!this->Bins->Build(meshes, options, binError))
   {
-    // One far-to-near order across meshes; each mesh keeps its own order among equal depths.
-    std::stable_sort(triangles.begin(), triangles.end(),
-      [](const Triangle& a, const Triangle& b) { return a.Depth > b.Depth; });
+    vtkErrorMacro(<< binError);
+    return 0;
   }
-  if (depthMode)
-  {
-    // Opaque triangles first (they write depth), then the semi-transparent ones in painter order.
-    std::stable_partition(
-      triangles.begin(), triangles.end(), [](const Triangle& t) { return t.Opaque; });
-  }
+  this->NumberOfDrawnTriangles = this->Bins->GetNumberOfTriangles();
+  this->NumberOfSkippedTriangles = this->Bins->GetNumberOfSkippedTriangles();
   this->UpdateProgress(0.4);
 
-  // Rasterise in horizontal bands in parallel; each band draws every triangle that meets it, in
-  // order, so the painter order holds within every pixel.
+  // Rasterise the bands in parallel.
   catar::ImageView view;
   view.width = width;
   view.height = height;
   view.rowStride = -4 * static_cast<std::ptrdiff_t>(width);
   view.data = out + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1); // top row (y = 0)
-  constexpr int kBand = 32;
-  const int nBands = (height + kBand - 1) / kBand;
-  if (depthMode || wantIds)
+  // Per-pixel ids: an int64 array in the colour image's (VTK) row order, written in place
+  // (catar::RasterId is long long, as vtkTypeInt64; a platform where they differ gets a copy).
+  std::vector<catar::RasterId> idCopy;
+  catar::RasterId* ids = nullptr;
+  vtkTypeInt64Array* visibleTriangle = nullptr;
+  if (wantIds)
   {
-    // Per-pixel ids: an int64 array in the colour image's (VTK) row order, written in place
-    // (catar::RasterId is long long, as vtkTypeInt64; a platform where they differ gets a copy).
-    vtkNew<vtkTypeInt64Array> visibleTriangle;
-    std::vector<catar::RasterId> idCopy;
-    catar::RasterId* ids = nullptr;
-    if (wantIds)
+    visibleTriangle = KeptArray(this->OutputIds, 1, nPixels);
+    visibleTriangle->SetName("VisibleTriangle");
+    output->GetPointData()->AddArray(visibleTriangle);
+    if constexpr (std::is_same<vtkTypeInt64, catar::RasterId>::value)
     {
-      visibleTriangle->SetName("VisibleTriangle");
-      visibleTriangle->SetNumberOfTuples(nPixels);
-      output->GetPointData()->AddArray(visibleTriangle);
-      if constexpr (std::is_same<vtkTypeInt64, catar::RasterId>::value)
-      {
-        ids = reinterpret_cast<catar::RasterId*>(visibleTriangle->GetPointer(0)); // same type
-      }
-      else
-      {
-        idCopy.resize(static_cast<size_t>(nPixels));
-        ids = idCopy.data();
-      }
+      ids = reinterpret_cast<catar::RasterId*>(visibleTriangle->GetPointer(0)); // same type
     }
-    // The depth buffer is scratch memory kept between executions (allocating and first touching
-    // it every frame costs more than the depth test itself on some systems).
-    float* depth = nullptr;
-    if (depthMode)
+    else
     {
-      this->DepthBuffer.resize(static_cast<size_t>(nPixels));
-      depth = this->DepthBuffer.data();
+      idCopy.resize(static_cast<size_t>(nPixels));
+      ids = idCopy.data();
     }
-    DrawWithBuffers(view, triangles, textures, kBand, depth, ids);
-    if (!idCopy.empty())
-    {
-      std::copy(idCopy.begin(), idCopy.end(), visibleTriangle->GetPointer(0));
-    }
-    this->NumberOfDrawnTriangles = static_cast<vtkIdType>(triangles.size());
-    this->UpdateProgress(1.0);
-    return 1;
   }
-  vtkSMPTools::For(0, nBands, 1, [&](vtkIdType b0, vtkIdType b1) {
-    for (vtkIdType b = b0; b < b1; ++b)
-    {
-      const catar::PixelRect band{ 0, static_cast<int>(b * kBand), width,
-        static_cast<int>(std::min<vtkIdType>(height, (b + 1) * kBand)) };
-      for (const Triangle& t : triangles)
-      {
-        if (t.YMax < band.y0 - 0.5 || t.YMin > band.y1 - 0.5)
-        {
-          continue;
-        }
-        catar::rasterizeTriangle(view, t.V[0], t.V[1], t.V[2], band, nullptr,
-          t.Texture >= 0 ? &textures[t.Texture] : nullptr);
-      }
-    }
-  });
-  this->NumberOfDrawnTriangles = static_cast<vtkIdType>(triangles.size());
+  // The depth buffer is scratch memory kept between executions (allocating and first touching
+  // it every frame costs more than the depth test itself on some systems).
+  float* depth = nullptr;
+  if (depthMode)
+  {
+    this->DepthBuffer.resize(static_cast<size_t>(nPixels));
+    depth = this->DepthBuffer.data();
+  }
+  DrawBands(view, *this->Bins, textures, background, depth, ids);
+  if (!idCopy.empty())
+  {
+    std::copy(idCopy.begin(), idCopy.end(), visibleTriangle->GetPointer(0));
+  }
   this->UpdateProgress(1.0);
   return 1;
 }

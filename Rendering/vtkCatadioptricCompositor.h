@@ -56,8 +56,13 @@
 
 #include "CatadioptricARRenderingModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // for vtkSmartPointer
 
+#include <memory> // for std::unique_ptr
 #include <vector> // for std::vector
+
+class vtkCatadioptricTriangleBins;
+class vtkTypeInt64Array;
 
 class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricCompositor : public vtkImageAlgorithm
 {
@@ -167,6 +172,11 @@ protected:
   vtkIdType NumberOfDrawnTriangles = 0;
   vtkIdType NumberOfSkippedTriangles = 0;
   std::vector<float> DepthBuffer; // DEPTH_BUFFER scratch, kept between executions
+  // The VisibleTriangle array of the last execution, reused when no one else holds it (the
+  // colour scalars are reused by vtkImageData itself).
+  vtkSmartPointer<vtkTypeInt64Array> OutputIds;
+  // The triangles of an execution, binned into bands; scratch kept between executions.
+  std::unique_ptr<vtkCatadioptricTriangleBins> Bins;
 
 private:
   vtkCatadioptricCompositor(const vtkCatadioptricCompositor&) = delete;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 void vtkCatadioptricImageSupport::RequestWholeExtents(
   vtkInformationVector** inputVector, std::initializer_list<int> ports)
@@ -31,43 +32,97 @@ void vtkCatadioptricImageSupport::RequestWholeExtents(
   }
 }
 
+namespace
+{
+// Widens the pixels [b, e) of a frame of kComponents unsigned char values per pixel to RGBA.
+template<int kComponents>
+void Widen(const unsigned char* in, vtkIdType b, vtkIdType e, unsigned char* out)
+{
+  vtkIdType i = b;
+  if (kComponents == 4)
+  {
+    std::copy(in + 4 * b, in + 4 * e, out + 4 * b);
+    return;
+  }
+  const std::uint32_t one = 1;
+  const bool littleEndian = *reinterpret_cast<const unsigned char*>(&one) == 1;
+  if (kComponents == 3 && littleEndian)
+  {
+    // RGB, the camera's format, four pixels (three 32-bit words in, four out) at a time: about
+    // twice as fast as byte by byte (measured), the frame being copied every frame.
+    for (; i + 4 <= e; i += 4)
+    {
+      std::uint32_t w[3];
+      std::memcpy(w, in + 3 * i, 12);
+      const std::uint32_t a = 0xFF000000u;
+      const std::uint32_t rgba[4] = { (w[0] & 0x00FFFFFFu) | a, (w[0] >> 24) | (w[1] << 8) | a,
+        (w[1] >> 16) | (w[2] << 16) | a, (w[2] >> 8) | a };
+      std::memcpy(out + 4 * i, rgba, 16);
+    }
+  }
+  for (; i < e; ++i)
+  {
+    const unsigned char* s = in + kComponents * i;
+    unsigned char* d = out + 4 * i;
+    if (kComponents >= 3)
+    {
+      d[0] = s[0];
+      d[1] = s[1];
+      d[2] = s[2];
+      d[3] = 255;
+    }
+    else
+    {
+      d[0] = d[1] = d[2] = s[0];
+      d[3] = kComponents == 2 ? s[1] : 255;
+    }
+  }
+}
+} // namespace
+
 void vtkCatadioptricImageSupport::CopyFrame(
   const unsigned char* in, int nc, vtkIdType n, unsigned char* out)
 {
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType i = b; i < e; ++i)
-    {
-      const unsigned char* s = in + nc * i;
-      unsigned char* d = out + 4 * i;
-      if (nc >= 3)
-      {
-        d[0] = s[0];
-        d[1] = s[1];
-        d[2] = s[2];
-        d[3] = nc == 4 ? s[3] : 255;
-      }
-      else
-      {
-        d[0] = d[1] = d[2] = s[0];
-        d[3] = nc == 2 ? s[1] : 255;
-      }
-    }
-  });
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) { CopyFramePixels(in, nc, b, e, out); });
+}
+
+void vtkCatadioptricImageSupport::CopyFramePixels(
+  const unsigned char* in, int nc, vtkIdType b, vtkIdType e, unsigned char* out)
+{
+  switch (nc)
+  {
+    case 1:
+      Widen<1>(in, b, e, out);
+      break;
+    case 2:
+      Widen<2>(in, b, e, out);
+      break;
+    case 3:
+      Widen<3>(in, b, e, out);
+      break;
+    default:
+      Widen<4>(in, b, e, out);
+      break;
+  }
 }
 
 void vtkCatadioptricImageSupport::FillColor(const double rgba[4], vtkIdType n, unsigned char* out)
+{
+  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) { FillColorPixels(rgba, b, e, out); });
+}
+
+void vtkCatadioptricImageSupport::FillColorPixels(
+  const double rgba[4], vtkIdType b, vtkIdType e, unsigned char* out)
 {
   unsigned char bg[4];
   for (int k = 0; k < 4; ++k)
   {
     bg[k] = static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, rgba[k]))));
   }
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType i = b; i < e; ++i)
-    {
-      std::copy(bg, bg + 4, out + 4 * i);
-    }
-  });
+  for (vtkIdType i = b; i < e; ++i)
+  {
+    std::copy(bg, bg + 4, out + 4 * i);
+  }
 }
 
 bool vtkCatadioptricImageSupport::ReadTextures(vtkInformationVector* textures, bool repeat,

@@ -36,6 +36,15 @@ public:
   /// Fills `n` RGBA pixels with a colour given in [0, 1] (clamped), in parallel.
   static void FillColor(const double rgba[4], vtkIdType n, unsigned char* out);
 
+  ///@{
+  /// CopyFrame and FillColor for the pixels [begin, end) only, in the calling thread: for a sink
+  /// that writes each part of its image, background first, in a parallel task of its own.
+  static void CopyFramePixels(
+    const unsigned char* frame, int components, vtkIdType begin, vtkIdType end, unsigned char* out);
+  static void FillColorPixels(
+    const double rgba[4], vtkIdType begin, vtkIdType end, unsigned char* out);
+  ///@}
+
   /// Views of the textures connected to `textures` (2D unsigned char images of 1, 3 or 4
   /// components, row 0 at the bottom). False with `error` set when one is not such an image.
   static bool ReadTextures(vtkInformationVector* textures, bool repeat,
