@@ -247,6 +247,23 @@ inline double TanHalf(double c, double s)
   return s != 0.0 ? (1.0 - c) / s : std::numeric_limits<double>::infinity();
 }
 
+// The point (c, s) = (cos t, sin t) of the unit circle at u = tan(t / 2).
+inline void CircleAt(double u, double& c, double& s)
+{
+  const double w = 1.0 / (1.0 + u * u);
+  c = (1.0 - u * u) * w;
+  s = 2.0 * u * w;
+}
+
+// Whether the camera at (a, 0) sees the circle point (c, s) at more than grazing incidence: the
+// cosine of the incidence angle, an / |(an, at)|, above kGrazingCosine (no square root).
+inline bool CameraSees(double a, double c, double s)
+{
+  const double an = a * c - 1.0;
+  const double at = -a * s;
+  return an > 0.0 && an * an > kGrazingCosine * kGrazingCosine * (an * an + at * at);
+}
+
 // The reflection quartic of SphereProjection.h in u = tan(t / 2), highest degree first.
 struct ReflectionQuartic
 {
@@ -419,6 +436,8 @@ ProjectionStatus MirrorFrame::Reflect(
     const Vec3& e1 = this->E1;
     e2 = (std::abs(e1.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(e1).normalized();
   }
+  const ReflectionQuartic q(a, bx, by);
+  double c = 0.0, s = 0.0;
   if (guess)
   {
     // Started next to the answer: plain Newton, accepted when it converges within a few steps
@@ -431,7 +450,6 @@ ProjectionStatus MirrorFrame::Reflect(
     const double gn = std::sqrt(gc * gc + gs * gs);
     if (gn > 0.0 && gc > -0.5 * gn && std::isfinite(gn))
     {
-      const ReflectionQuartic q(a, bx, by);
       double u = gs / (gn + gc); // tan(t/2) of the guess's angle
       bool converged = false;
       for (int it = 0; it < 4; ++it)
@@ -447,15 +465,10 @@ ProjectionStatus MirrorFrame::Reflect(
       }
       if (converged && u >= 0.0)
       {
-        const double w = 1.0 / (1.0 + u * u);
-        const double c = (1.0 - u * u) * w;
-        const double s = 2.0 * u * w;
-        const double an = a * c - 1.0;
-        const double at = -a * s;
+        CircleAt(u, c, s);
         const double bn = bx * c + by * s - 1.0;
         const double bt = by * c - bx * s;
-        if (an > 0.0 && an * an > kGrazingCosine * kGrazingCosine * (an * an + at * at) &&
-          bn > 0.0 && bt >= 0.0)
+        if (CameraSees(a, c, s) && bn > 0.0 && bt >= 0.0)
         {
           mirrorPoint = this->Centre + this->Radius * (c * this->E1 + s * e2);
           return ProjectionStatus::Valid;
@@ -479,7 +492,6 @@ ProjectionStatus MirrorFrame::Reflect(
   const double uBeta = TanHalf(cosBeta, sinBeta);
   const double lo = std::max(uGap, 0.0);
   const double hi = std::min(this->TanHalfAlphaA, uBeta);
-  const ReflectionQuartic q(a, bx, by);
   // Far-field guess t = beta / 2: tan(beta / 4) from tan(beta / 2).
   double start = std::isfinite(uBeta) ? uBeta / (1.0 + std::sqrt(1.0 + uBeta * uBeta)) : 1.0;
   if (solver == SolverType::Quartic && !guess)
@@ -498,13 +510,8 @@ ProjectionStatus MirrorFrame::Reflect(
   {
     return ProjectionStatus::NoReflection;
   }
-  const double w = 1.0 / (1.0 + u * u);
-  const double c = (1.0 - u * u) * w;
-  const double s = 2.0 * u * w;
-  // Grazing test: cosine of the incidence angle at the camera side.
-  const double an = a * c - 1.0;
-  const double at = -a * s;
-  if (!(an > 0.0 && an * an > kGrazingCosine * kGrazingCosine * (an * an + at * at)))
+  CircleAt(u, c, s);
+  if (!CameraSees(a, c, s))
   {
     return ProjectionStatus::NoReflection;
   }
