@@ -99,7 +99,8 @@ bool WriteCsv(const std::string& file, const std::vector<Result>& results)
          "fps\n";
   for (const Result& r : results)
   {
-    out << r.object << ",\"" << r.variant << "\"," << r.triangles << "," << r.frames;
+    out << CsvField(r.object) << "," << CsvField(r.variant) << "," << r.triangles << ","
+        << r.frames;
     for (double ms : r.stages.ms)
     {
       out << "," << ms;

@@ -297,24 +297,6 @@ void PrintRow(const Row& r)
   std::fflush(stdout);
 }
 
-std::string CsvField(const std::string& s)
-{
-  if (s.find_first_of(",\"\n") == std::string::npos)
-  {
-    return s;
-  }
-  std::string quoted = "\"";
-  for (char c : s)
-  {
-    quoted += c;
-    if (c == '"')
-    {
-      quoted += '"';
-    }
-  }
-  return quoted + "\"";
-}
-
 void WriteCsv(const std::string& file, const std::vector<Row>& rows)
 {
   std::ofstream out(file);

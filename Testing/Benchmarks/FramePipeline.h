@@ -56,6 +56,25 @@ inline double Median(std::vector<double> v)
   return v[v.size() / 2];
 }
 
+/// A CSV field: as it is, or quoted (inner quotes doubled) when it holds a comma, quote or newline.
+inline std::string CsvField(const std::string& s)
+{
+  if (s.find_first_of(",\"\n") == std::string::npos)
+  {
+    return s;
+  }
+  std::string quoted = "\"";
+  for (char c : s)
+  {
+    quoted += c;
+    if (c == '"')
+    {
+      quoted += '"';
+    }
+  }
+  return quoted + "\"";
+}
+
 /// The synthetic camera frame the objects are composited onto (the procedural room seen in the
 /// mirror), made once.
 inline vtkSmartPointer<vtkImageData> CameraFrame(vtkCatadioptricCamera* camera)

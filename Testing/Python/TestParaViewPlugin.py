@@ -64,6 +64,16 @@ def main():
         x, y = int(round(px[0])), int(round(px[1]))
         centre = scalars.GetTuple4((dims[1] - 1 - y) * dims[0] + x)
         assert centre == (255.0, 0.0, 255.0, 255.0), (px, centre)
+        # Back-face culling on the closed sphere: fewer triangles drawn, the same silhouette.
+        drawn = compositor.GetClientSideObject().GetNumberOfDrawnTriangles()
+        projection.BackFaceCulling = 1
+        compositor.UpdatePipeline()
+        culled = servermanager.Fetch(compositor).GetPointData().GetScalars()
+        assert compositor.GetClientSideObject().GetNumberOfDrawnTriangles() < drawn
+        assert sum(1 for i in range(culled.GetNumberOfTuples())
+                   if culled.GetTuple4(i) == (255.0, 0.0, 255.0, 255.0)) == magenta
+        projection.BackFaceCulling = 0
+        compositor.UpdatePipeline()
         # The exact reference of the same sphere: magenta at the same pixel, a similar count.
         tracer = CatadioptricRayTracer(Frame=frame, Input=[sphere], CalibrationFileName=calib)
         tracer.ColorArrayName = ""
