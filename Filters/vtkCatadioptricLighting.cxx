@@ -8,6 +8,7 @@
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricPointReader.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -22,7 +23,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
-#include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <Eigen/Geometry>
@@ -36,9 +36,9 @@ vtkStandardNewMacro(vtkCatadioptricLighting);
 
 namespace
 {
-// Points (or cells) per parallel task: vtkSMPTools' STDThread backend starts its threads for
-// every parallel loop, which costs more than lighting a small mesh; smaller ranges run inline.
-constexpr vtkIdType kPointGrain = 1024;
+// Points (or cells) per parallel task: waking the pool's threads costs more than lighting a few
+// hundred points; smaller meshes are lit inline.
+constexpr vtkIdType kPointGrain = 512;
 }
 
 namespace
@@ -286,8 +286,7 @@ int vtkCatadioptricLighting::RequestData(
     static_cast<float>(prop->GetDiffuseColor()[1]), static_cast<float>(prop->GetDiffuseColor()[2]),
     1.0f };
   const vtkCatadioptricColorArray base(input, this->InputColorArrayName, solid);
-  const std::vector<catar::LightSource> lights =
-    vtkCatadioptricLightingSupport::ConvertLights(this->Lights);
+  const catar::LightSet lights(vtkCatadioptricLightingSupport::ConvertLights(this->Lights));
   const catar::Vec3 globalAmbient = V3(this->GlobalAmbient);
   const bool twoSided = this->TwoSidedLighting;
   const int mode = this->ShadingMode;
@@ -384,7 +383,7 @@ int vtkCatadioptricLighting::RequestData(
     const vtkCatadioptricPointReader points(input->GetPoints());
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(pointVisible);
     auto* mirrorDoubles = vtkDoubleArray::SafeDownCast(mirror);
-    vtkSMPTools::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
+    vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
       std::vector<unsigned char> lit(lights.size(), 1);
       for (vtkIdType i = b; i < e; ++i)
       {
@@ -444,7 +443,7 @@ int vtkCatadioptricLighting::RequestData(
     vtkCellArray* polys = input->GetPolys();
     const vtkCatadioptricPointReader points(input->GetPoints());
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(cellVisible);
-    vtkSMPTools::For(0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
+    vtkCatadioptricParallel::For(0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
       std::vector<unsigned char> lit(lights.size(), 1);
       vtkNew<vtkIdList> scratch;
       for (vtkIdType c = b; c < e; ++c)

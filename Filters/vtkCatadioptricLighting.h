@@ -26,7 +26,8 @@
  * polygons and those of the meshes on input port 1 (optional, repeatable: the other objects of the
  * scene, in world coordinates). The acceleration structure is kept while no mesh changes.
  *
- * Points and cells that are not visible are left black. Work is split with vtkSMPTools.
+ * Points and cells that are not visible are left black. Work is split over the threads of
+ * vtkCatadioptricParallel (as many as vtkSMPTools would use).
  */
 #ifndef vtkCatadioptricLighting_h
 #define vtkCatadioptricLighting_h

@@ -1,5 +1,6 @@
 #include "vtkCatadioptricPainterSort.h"
 
+#include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -12,7 +13,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -25,9 +25,9 @@ vtkStandardNewMacro(vtkCatadioptricPainterSort);
 
 namespace
 {
-// Elements per parallel copy task: vtkSMPTools' STDThread backend starts its threads for every
-// parallel loop, which costs more than copying a small mesh; smaller ranges run inline.
-constexpr vtkIdType kCopyGrain = 16384;
+// Elements per parallel copy task: waking the pool's threads costs more than copying a few
+// thousand tuples; smaller meshes are copied inline.
+constexpr vtkIdType kCopyGrain = 8192;
 
 // A 64-bit key whose unsigned order is the order of decreasing depth (far to near): the IEEE bits
 // made monotone (negative numbers reversed), then complemented. -0 is +0, as the comparison of
@@ -107,7 +107,7 @@ vtkSmartPointer<vtkCellArray> Reordered(
   vtkNew<ArrayT> connectivity;
   connectivity->SetNumberOfValues(outOff[n]);
   ValueT* outConn = connectivity->GetPointer(0);
-  vtkSMPTools::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
+  vtkCatadioptricParallel::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType i = b; i < e; ++i)
     {
       const vtkIdType c = order[i];
@@ -154,7 +154,7 @@ void GatherCellData(vtkCellData* in, vtkCellData* out, const std::vector<vtkIdTy
       auto gather = [&](auto size) {
         constexpr std::size_t B = decltype(size)::value;
         const std::size_t width = B ? B : bytes;
-        vtkSMPTools::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
+        vtkCatadioptricParallel::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
           for (vtkIdType i = b; i < e; ++i)
           {
             std::memcpy(to + i * width, from + source[i] * width, B ? B : width);

@@ -4,6 +4,7 @@
 #include "SphereProjection.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricPointReader.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -15,7 +16,6 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <Eigen/Geometry> // cross products
@@ -27,9 +27,9 @@ vtkStandardNewMacro(vtkCatadioptricProjection);
 
 namespace
 {
-// Points (or cells) per parallel task: vtkSMPTools' STDThread backend starts its threads for
-// every parallel loop, which costs more than projecting a small mesh; smaller ranges run inline.
-constexpr vtkIdType kPointGrain = 1024;
+// Points (or cells) per parallel task: waking the pool's threads costs more than projecting a
+// few hundred points; smaller meshes are projected inline.
+constexpr vtkIdType kPointGrain = 512;
 
 // Projects the polygons' centroids and decides cell visibility; runs over a range of polygons.
 struct CellWorker
@@ -136,7 +136,7 @@ struct CellDispatch
   template<typename CellStateT>
   void operator()(CellStateT& state, const CellWorker& worker) const
   {
-    vtkSMPTools::For(0, state.GetNumberOfCells(), kPointGrain,
+    vtkCatadioptricParallel::For(0, state.GetNumberOfCells(), kPointGrain,
       [&](vtkIdType b, vtkIdType e) { worker(state, b, e); });
   }
 };
@@ -204,7 +204,7 @@ int vtkCatadioptricProjection::RequestData(
     unsigned char* st = status->GetPointer(0);
     unsigned char* vi = pvis->GetPointer(0);
     const bool coherent = solver == catar::SolverType::Iterative;
-    vtkSMPTools::For(0, nPts, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
+    vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
       // ITERATIVE starts each point's Newton at the previous point's reflection (points that
       // follow each other in a mesh are mostly neighbours), falling back to the far-field guess.
       catar::Vec3 previous = catar::Vec3::Zero();

@@ -12,8 +12,8 @@
  *    point, the viewer of flat shading) and Visible (uint8: 1 when every vertex and the
  *    centroid project and the cell's pixel bounding box meets the image);
  *  - field data: the camera (vtkCatadioptricCamera::WriteToFieldData).
- * Vertices and lines are passed through with Visible 0. Work is split over points and cells with
- * vtkSMPTools.
+ * Vertices and lines are passed through with Visible 0. Work is split over points and cells on
+ * the threads of vtkCatadioptricParallel (as many as vtkSMPTools would use).
  *
  * The camera comes from SetCamera(), or, when no camera object is set, from CalibrationFileName.
  */

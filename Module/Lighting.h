@@ -21,6 +21,7 @@
 
 #include "CameraModel.h"
 
+#include <initializer_list>
 #include <vector>
 
 namespace catar
@@ -65,9 +66,44 @@ double Attenuation(const LightSource& light, double distance);
 /// spot_k for the unit vector l from p to the light: 1 for non-spot lights; 0 outside the cone.
 double SpotFactor(const LightSource& light, const Vec3& toLight);
 
+/// x^e for x >= 0: by repeated squaring when e is a whole number up to 256 (Phong and spot
+/// exponents mostly are; a few times faster than std::pow, within a few ulps of it), else std::pow.
+double PhongPower(double x, double e);
+
+/// Lights with what the equation needs per light computed once (the unit spot axis, the cosine of
+/// the cone angle, the direction of a directional light), for shading many points.
+class LightSet
+{
+public:
+  LightSet() = default;
+  LightSet(std::vector<LightSource> lights); // NOLINT: implicit, as a list of lights is one
+  LightSet(std::initializer_list<LightSource> lights);
+
+  std::size_t size() const { return this->Lights.size(); }
+  bool empty() const { return this->Lights.empty(); }
+  const LightSource& operator[](std::size_t k) const { return this->Lights[k]; }
+
+  /// As DirectionToLight, SpotFactor and Attenuation for light k, from the precomputed values.
+  Vec3 DirectionToLight(std::size_t k, const Vec3& p, double* distance = nullptr) const;
+  double SpotFactor(std::size_t k, const Vec3& toLight) const;
+  double Attenuation(std::size_t k, double distance) const;
+
+private:
+  void Prepare();
+  struct Constants
+  {
+    Vec3 direction = Vec3(0, 0, 1); // directional light: unit vector towards it
+    Vec3 axis = Vec3::Zero();       // spot with a cone: unit axis
+    double cosCone = -1.0;          // spot with a cone: cosine of the half angle
+    bool cone = false;              // spot whose cone limits it (angle < 90 and an axis)
+  };
+  std::vector<LightSource> Lights;
+  std::vector<Constants> Prepared;
+};
+
 /// The colour of point p, unit normal n, seen from viewer point v (equation above). `lit`, when
 /// not null, holds occ_k for each light (0: shadowed). With twoSided, n is flipped to face v.
-Vec3 Shade(const Vec3& p, const Vec3& n, const Vec3& viewer, const std::vector<LightSource>& lights,
+Vec3 Shade(const Vec3& p, const Vec3& n, const Vec3& viewer, const LightSet& lights,
   const Material& material, const Vec3& globalAmbient, const unsigned char* lit = nullptr,
   bool twoSided = true);
 } // namespace catar

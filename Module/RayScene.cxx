@@ -193,8 +193,8 @@ RayScene::Hit RayScene::Intersect(
   return result;
 }
 
-int TraceShadows(const RayScene& scene, const Vec3& p, const Vec3& n,
-  const std::vector<LightSource>& lights, unsigned char* lit)
+int TraceShadows(const RayScene& scene, const Vec3& p, const Vec3& n, const LightSet& lights,
+  unsigned char* lit)
 {
   const double offset = 1e-4 * scene.GetSceneSize();
   const Vec3 start = p + offset * n;
@@ -205,8 +205,8 @@ int TraceShadows(const RayScene& scene, const Vec3& p, const Vec3& n,
     lit[k] = 1;
     // A light the surface faces away from, or whose cone misses the point, adds no diffuse or
     // specular term whatever the occlusion.
-    const Vec3 toLight = DirectionToLight(light, p);
-    if (n.dot(toLight) <= 0.0 || SpotFactor(light, toLight) == 0.0)
+    const Vec3 toLight = lights.DirectionToLight(k, p);
+    if (n.dot(toLight) <= 0.0 || lights.SpotFactor(k, toLight) == 0.0)
     {
       continue;
     }

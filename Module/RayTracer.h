@@ -121,7 +121,7 @@ private:
 
   std::vector<TraceMesh> Meshes;
   std::vector<TextureView> Textures;
-  std::vector<LightSource> Lights;
+  LightSet Lights;
   Vec3 GlobalAmbient = Vec3::Zero();
   bool Shadows = false;
   std::vector<GlobalTriangle> Triangles;

@@ -5,6 +5,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricImageSupport.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricTriangleBins.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -15,7 +16,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
@@ -79,7 +79,7 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
     idView.height = height;
     idView.rowStride = -w;
   }
-  vtkSMPTools::For(0, bins.GetNumberOfBands(), 1, [&](vtkIdType i0, vtkIdType i1) {
+  vtkCatadioptricParallel::For(0, bins.GetNumberOfBands(), 1, [&](vtkIdType i0, vtkIdType i1) {
     for (vtkIdType i = i0; i < i1; ++i)
     {
       const int b = bins.GetBandByLoad(static_cast<int>(i));

@@ -1,12 +1,12 @@
 #include "vtkCatadioptricImageSupport.h"
 
+#include "vtkCatadioptricParallel.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
@@ -83,7 +83,7 @@ void Widen(const unsigned char* in, vtkIdType b, vtkIdType e, unsigned char* out
 void vtkCatadioptricImageSupport::CopyFrame(
   const unsigned char* in, int nc, vtkIdType n, unsigned char* out)
 {
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) { CopyFramePixels(in, nc, b, e, out); });
+  vtkCatadioptricParallel::For(0, n, 1, [&](vtkIdType b, vtkIdType e) { CopyFramePixels(in, nc, b, e, out); });
 }
 
 void vtkCatadioptricImageSupport::CopyFramePixels(
@@ -108,7 +108,7 @@ void vtkCatadioptricImageSupport::CopyFramePixels(
 
 void vtkCatadioptricImageSupport::FillColor(const double rgba[4], vtkIdType n, unsigned char* out)
 {
-  vtkSMPTools::For(0, n, [&](vtkIdType b, vtkIdType e) { FillColorPixels(rgba, b, e, out); });
+  vtkCatadioptricParallel::For(0, n, 1, [&](vtkIdType b, vtkIdType e) { FillColorPixels(rgba, b, e, out); });
 }
 
 void vtkCatadioptricImageSupport::FillColorPixels(

@@ -1,13 +1,13 @@
 #include "vtkCatadioptricTriangleBins.h"
 
 #include "vtkArrayDispatch.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -182,7 +182,7 @@ bool vtkCatadioptricTriangleBins::Build(
   const vtkIdType nPointTasks = static_cast<vtkIdType>(this->PointChunks.size());
   const vtkIdType nTasks = nPointTasks + static_cast<vtkIdType>(this->CellChunks.size());
   const vtkIdType grain = nPoints + nCells < kSerialReading ? nTasks : 1;
-  vtkSMPTools::For(0, nTasks, grain, [&](vtkIdType t0, vtkIdType t1) {
+  vtkCatadioptricParallel::For(0, nTasks, grain, [&](vtkIdType t0, vtkIdType t1) {
     for (vtkIdType t = t0; t < t1; ++t)
     {
       if (t < nPointTasks)
@@ -226,7 +226,7 @@ bool vtkCatadioptricTriangleBins::Build(
   {
     this->Parts.resize(this->CellChunks.size());
   }
-  vtkSMPTools::For(
+  vtkCatadioptricParallel::For(
     0, static_cast<vtkIdType>(this->CellChunks.size()), 1, [&](vtkIdType c0, vtkIdType c1) {
       for (vtkIdType c = c0; c < c1; ++c)
       {
@@ -248,7 +248,7 @@ bool vtkCatadioptricTriangleBins::Build(
     const vtkIdType n = static_cast<vtkIdType>(this->Sequence.size());
     const vtkIdType nParts = (n + kTrianglesPerChunk - 1) / kTrianglesPerChunk;
     this->Parts.resize(static_cast<size_t>(nParts));
-    vtkSMPTools::For(0, nParts, 1, [&](vtkIdType p0, vtkIdType p1) {
+    vtkCatadioptricParallel::For(0, nParts, 1, [&](vtkIdType p0, vtkIdType p1) {
       for (vtkIdType p = p0; p < p1; ++p)
       {
         const std::uint32_t* slice = this->Sequence.data() + p * kTrianglesPerChunk;

@@ -7,11 +7,12 @@
 // spotlights with shadows, the depth buffer, the exact reference renderer, and resident memory
 // over --memory-frames frames (default 1000). Run:
 //   CATAR_SHARED_DATA=../shared/data build/bin/BenchmarkSpeed [--frames N] [--memory-frames N]
-//     [--csv FILE] [--object NAME] [--max-seconds S] [--threads N] [--quick]
+//     [--csv FILE] [--object NAME] [--max-seconds S] [--threads N] [--quick] [--no-variants]
 // --object NAME keeps only the objects of that name (box, sphere, bunny, happy-buddha-67k, ...).
 // --max-seconds S (default 30) stops a row after S seconds (at least 5 frames; the table
 // gives the count). --threads N runs vtkSMPTools on N threads (default: all cores).
-// --quick (CI smoke) renders 3 frames of a few small objects.
+// --quick (CI smoke) renders 3 frames of a few small objects. --no-variants stops after the first
+// table (no variants, reference renderer or memory).
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
 
@@ -132,6 +133,7 @@ int main(int argc, char* argv[])
   int memoryFrames = 1000;
   double maxSeconds = 30.0;
   bool quick = false;
+  bool variants = true;
   std::string csv;
   std::string only; // --object NAME: only the objects of that name
   for (int i = 1; i < argc; ++i)
@@ -164,11 +166,15 @@ int main(int argc, char* argv[])
     {
       quick = true;
     }
+    else if (!std::strcmp(argv[i], "--no-variants"))
+    {
+      variants = false;
+    }
     else
     {
       std::fprintf(stderr,
         "usage: BenchmarkSpeed [--frames N] [--memory-frames N] [--csv FILE] [--object NAME] "
-        "[--threads N] [--max-seconds S] [--quick]\n");
+        "[--threads N] [--max-seconds S] [--quick] [--no-variants]\n");
       return 2;
     }
   }
@@ -238,7 +244,7 @@ int main(int argc, char* argv[])
     name = "sphere";
     target = Sphere(264, 134);
   }
-  if (!only.empty() && only != name)
+  if ((!only.empty() && only != name) || !variants)
   {
     return WriteCsv(csv, results) ? 0 : 1;
   }
@@ -251,29 +257,29 @@ int main(int argc, char* argv[])
     const char* label;
     FrameOptions options;
   };
-  std::vector<Variant> variants(8);
-  variants[0].label = "1 spot, gouraud, painter, quartic";
-  variants[1].label = "1 spot, gouraud, painter, iterative";
-  variants[1].options.solver = vtkCatadioptricProjection::ITERATIVE;
-  variants[2].label = "3 spots, shadows, gouraud, painter, iterative";
-  variants[2].options.solver = vtkCatadioptricProjection::ITERATIVE;
-  variants[2].options.lights = 3;
-  variants[2].options.shadows = true;
-  variants[3].label = "1 spot, flat, painter, iterative";
-  variants[3].options.solver = vtkCatadioptricProjection::ITERATIVE;
-  variants[3].options.shading = vtkCatadioptricLighting::FLAT;
-  variants[4].label = "1 spot, gouraud, depth buffer, iterative";
-  variants[4].options.solver = vtkCatadioptricProjection::ITERATIVE;
-  variants[4].options.visibility = vtkCatadioptricCompositor::DEPTH_BUFFER;
-  variants[5].label = "1 spot, gouraud, painter, iterative, back faces culled";
-  variants[5].options.solver = vtkCatadioptricProjection::ITERATIVE;
-  variants[5].options.cullBackFaces = true;
-  variants[6].label = "3 spots, shadows, gouraud, painter, iterative, back faces culled";
-  variants[6].options = variants[2].options;
-  variants[6].options.cullBackFaces = true;
-  variants[7].label = "1 spot, gouraud, painter, quartic, back faces culled";
-  variants[7].options.cullBackFaces = true;
-  for (const Variant& v : variants)
+  std::vector<Variant> variantList(8);
+  variantList[0].label = "1 spot, gouraud, painter, quartic";
+  variantList[1].label = "1 spot, gouraud, painter, iterative";
+  variantList[1].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[2].label = "3 spots, shadows, gouraud, painter, iterative";
+  variantList[2].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[2].options.lights = 3;
+  variantList[2].options.shadows = true;
+  variantList[3].label = "1 spot, flat, painter, iterative";
+  variantList[3].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[3].options.shading = vtkCatadioptricLighting::FLAT;
+  variantList[4].label = "1 spot, gouraud, depth buffer, iterative";
+  variantList[4].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[4].options.visibility = vtkCatadioptricCompositor::DEPTH_BUFFER;
+  variantList[5].label = "1 spot, gouraud, painter, iterative, back faces culled";
+  variantList[5].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[5].options.cullBackFaces = true;
+  variantList[6].label = "3 spots, shadows, gouraud, painter, iterative, back faces culled";
+  variantList[6].options = variantList[2].options;
+  variantList[6].options.cullBackFaces = true;
+  variantList[7].label = "1 spot, gouraud, painter, quartic, back faces culled";
+  variantList[7].options.cullBackFaces = true;
+  for (const Variant& v : variantList)
   {
     FramePipeline pipeline(target, camera, frame, v.options);
     Result r{ name, v.label, target->GetNumberOfPolys(), {}, 0.0 };
