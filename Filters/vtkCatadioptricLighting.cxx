@@ -443,58 +443,59 @@ int vtkCatadioptricLighting::RequestData(
     vtkCellArray* polys = input->GetPolys();
     const vtkCatadioptricPointReader points(input->GetPoints());
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(cellVisible);
-    vtkCatadioptricParallel::For(0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
-      std::vector<unsigned char> lit(lights.size(), 1);
-      vtkNew<vtkIdList> scratch;
-      for (vtkIdType c = b; c < e; ++c)
-      {
-        const vtkIdType cellId = first + c;
-        if (visibleBytes ? visibleBytes->GetValue(cellId) == 0
-                         : cellVisible->GetComponent(cellId, 0) == 0)
+    vtkCatadioptricParallel::For(
+      0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
+        std::vector<unsigned char> lit(lights.size(), 1);
+        vtkNew<vtkIdList> scratch;
+        for (vtkIdType c = b; c < e; ++c)
         {
-          continue;
-        }
-        vtkIdType n = 0;
-        const vtkIdType* pts = nullptr;
-        polys->GetCellAtId(c, n, pts, scratch); // no copy when the ids are stored as vtkIdType
-        catar::Vec3 centroid = catar::Vec3::Zero();
-        catar::Vec3 area = catar::Vec3::Zero();
-        catar::Vec3 last = points(pts[n - 1]);
-        for (vtkIdType k = 0; k < n; ++k)
-        {
-          const catar::Vec3 a = points(pts[k]);
-          centroid += a;
-          area += last.cross(a);
-          last = a;
-        }
-        centroid /= static_cast<double>(n);
-        // Base colour: a cell colour, or the mean of the point colours.
-        float rgba[4] = { 0, 0, 0, 0 };
-        for (vtkIdType k = 0; k < (base.IsPerPoint() ? n : 1); ++k)
-        {
-          float v[4];
-          base.Get(pts[k], cellId, v);
-          for (int j = 0; j < 4; ++j)
+          const vtkIdType cellId = first + c;
+          if (visibleBytes ? visibleBytes->GetValue(cellId) == 0
+                           : cellVisible->GetComponent(cellId, 0) == 0)
           {
-            rgba[j] += v[j] / (base.IsPerPoint() ? n : 1);
+            continue;
           }
+          vtkIdType n = 0;
+          const vtkIdType* pts = nullptr;
+          polys->GetCellAtId(c, n, pts, scratch); // no copy when the ids are stored as vtkIdType
+          catar::Vec3 centroid = catar::Vec3::Zero();
+          catar::Vec3 area = catar::Vec3::Zero();
+          catar::Vec3 last = points(pts[n - 1]);
+          for (vtkIdType k = 0; k < n; ++k)
+          {
+            const catar::Vec3 a = points(pts[k]);
+            centroid += a;
+            area += last.cross(a);
+            last = a;
+          }
+          centroid /= static_cast<double>(n);
+          // Base colour: a cell colour, or the mean of the point colours.
+          float rgba[4] = { 0, 0, 0, 0 };
+          for (vtkIdType k = 0; k < (base.IsPerPoint() ? n : 1); ++k)
+          {
+            float v[4];
+            base.Get(pts[k], cellId, v);
+            for (int j = 0; j < 4; ++j)
+            {
+              rgba[j] += v[j] / (base.IsPerPoint() ? n : 1);
+            }
+          }
+          catar::Vec3 color(rgba[0], rgba[1], rgba[2]);
+          if (mode == FLAT)
+          {
+            const double len = area.norm();
+            const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
+            double cm[3];
+            centroidMirror->GetTuple(cellId, cm);
+            color = shade(centroid, normal, model.CameraToWorld(V3(cm)), rgba, lit);
+          }
+          unsigned char* o = out + 4 * cellId;
+          o[0] = ToByte(color.x());
+          o[1] = ToByte(color.y());
+          o[2] = ToByte(color.z());
+          o[3] = ToByte(opacity * rgba[3]);
         }
-        catar::Vec3 color(rgba[0], rgba[1], rgba[2]);
-        if (mode == FLAT)
-        {
-          const double len = area.norm();
-          const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
-          double cm[3];
-          centroidMirror->GetTuple(cellId, cm);
-          color = shade(centroid, normal, model.CameraToWorld(V3(cm)), rgba, lit);
-        }
-        unsigned char* o = out + 4 * cellId;
-        o[0] = ToByte(color.x());
-        o[1] = ToByte(color.y());
-        o[2] = ToByte(color.z());
-        o[3] = ToByte(opacity * rgba[3]);
-      }
-    });
+      });
     output->GetPointData()->RemoveArray("Colors");
     output->GetCellData()->RemoveArray("Colors");
     output->GetCellData()->AddArray(colors);

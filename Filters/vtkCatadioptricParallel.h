@@ -31,8 +31,8 @@ public:
   static void For(vtkIdType begin, vtkIdType end, vtkIdType grain, Functor&& f)
   {
     using F = typename std::remove_reference<Functor>::type;
-    Run(begin, end, grain,
-      [](void* fn, vtkIdType b, vtkIdType e) { (*static_cast<F*>(fn))(b, e); },
+    Run(
+      begin, end, grain, [](void* fn, vtkIdType b, vtkIdType e) { (*static_cast<F*>(fn))(b, e); },
       const_cast<void*>(static_cast<const void*>(&f)));
   }
 

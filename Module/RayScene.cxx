@@ -146,7 +146,8 @@ bool RayScene::Occluded(const Vec3& from, const Vec3& to, double margin) const
   ray.dir_y = static_cast<float>(d.y() / length);
   ray.dir_z = static_cast<float>(d.z() / length);
   ray.tnear = static_cast<float>(margin);
-  ray.tfar = std::isfinite(to.x()) ? static_cast<float>(length - margin) : std::numeric_limits<float>::infinity();
+  ray.tfar = std::isfinite(to.x()) ? static_cast<float>(length - margin)
+                                   : std::numeric_limits<float>::infinity();
   ray.time = 0.0f;
   ray.mask = 0xFFFFFFFFu;
   ray.id = 0;
@@ -193,8 +194,8 @@ RayScene::Hit RayScene::Intersect(
   return result;
 }
 
-int TraceShadows(const RayScene& scene, const Vec3& p, const Vec3& n, const LightSet& lights,
-  unsigned char* lit)
+int TraceShadows(
+  const RayScene& scene, const Vec3& p, const Vec3& n, const LightSet& lights, unsigned char* lit)
 {
   const double offset = 1e-4 * scene.GetSceneSize();
   const Vec3 start = p + offset * n;

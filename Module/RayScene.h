@@ -62,8 +62,8 @@ private:
 /// along a directional light) is blocked by the scene, else 1. Lights that cannot light p anyway
 /// (n . l <= 0, or a spotlight cone that misses p) are not traced and get 1. Returns the number
 /// of rays traced.
-int TraceShadows(const RayScene& scene, const Vec3& p, const Vec3& n, const LightSet& lights,
-  unsigned char* lit);
+int TraceShadows(
+  const RayScene& scene, const Vec3& p, const Vec3& n, const LightSet& lights, unsigned char* lit);
 } // namespace catar
 
 #endif
