@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 vtkStandardNewMacro(vtkCatadioptricProjection);
 
@@ -52,6 +53,7 @@ struct CellWorker
   template<typename CellStateT>
   void operator()(CellStateT& state, vtkIdType begin, vtkIdType end) const
   {
+    Batch batch;
     for (vtkIdType c = begin; c < end; ++c)
     {
       const auto ids = state.GetCellRange(c);
@@ -110,8 +112,49 @@ struct CellWorker
         }
       }
       // The centroid reflects next to its vertices: Newton from the mean of their reflection
-      // points converges in one or two steps, to the same answer as either solver.
-      const catar::ProjectedPoint q = this->Projector->ProjectWorldNear(centroid, guess);
+      // points converges in one or two steps, to the same answer as either solver. Centroids are
+      // solved a batch at a time (side by side, see SphereProjector::ProjectWorldNear).
+      batch.Add(out, centroid, guess, normal, xmin, xmax, ymin, ymax);
+      if (batch.Full())
+      {
+        this->Finish(batch);
+      }
+    }
+    this->Finish(batch);
+  }
+
+  // Cells whose centroid is still to be projected.
+  struct Batch
+  {
+    static constexpr int W = catar::detail::MirrorFrame::kLanes;
+    int n = 0;
+    vtkIdType out[W];
+    catar::Vec3 centroid[W], guess[W], normal[W];
+    double bounds[W][4];
+    catar::ProjectedPoint q[W];
+    bool Full() const { return this->n == W; }
+    void Add(vtkIdType o, const catar::Vec3& c, const catar::Vec3& g, const catar::Vec3& nrm,
+      double xmin, double xmax, double ymin, double ymax)
+    {
+      this->out[this->n] = o;
+      this->centroid[this->n] = c;
+      this->guess[this->n] = g;
+      this->normal[this->n] = nrm;
+      this->bounds[this->n][0] = xmin;
+      this->bounds[this->n][1] = xmax;
+      this->bounds[this->n][2] = ymin;
+      this->bounds[this->n][3] = ymax;
+      ++this->n;
+    }
+  };
+
+  void Finish(Batch& batch) const
+  {
+    this->Projector->ProjectWorldNear(batch.n, batch.centroid, batch.guess, batch.q);
+    for (int k = 0; k < batch.n; ++k)
+    {
+      const catar::ProjectedPoint& q = batch.q[k];
+      const vtkIdType out = batch.out[k];
       if (!catar::HasProjection(q.status))
       {
         continue;
@@ -119,15 +162,17 @@ struct CellWorker
       this->Depth[out] = q.pathLength;
       std::copy(q.mirrorPoint.data(), q.mirrorPoint.data() + 3, this->CentroidMirror + 3 * out);
       if (this->CullBackFaces &&
-        normal.dot(this->CameraToWorldRotation * q.mirrorPoint + this->CameraCentre - centroid) <=
-          0.0)
+        batch.normal[k].dot(this->CameraToWorldRotation * q.mirrorPoint + this->CameraCentre -
+          batch.centroid[k]) <= 0.0)
       {
         continue;
       }
+      const double* b = batch.bounds[k];
       const bool overlapsImage =
-        xmax >= -0.5 && ymax >= -0.5 && xmin < this->Width - 0.5 && ymin < this->Height - 0.5;
+        b[1] >= -0.5 && b[3] >= -0.5 && b[0] < this->Width - 0.5 && b[2] < this->Height - 0.5;
       this->Visible[out] = overlapsImage ? 1 : 0;
     }
+    batch.n = 0;
   }
 };
 
@@ -205,17 +250,7 @@ int vtkCatadioptricProjection::RequestData(
     unsigned char* vi = pvis->GetPointer(0);
     const bool coherent = solver == catar::SolverType::Iterative;
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
-      // ITERATIVE starts each point's Newton at the previous point's reflection (points that
-      // follow each other in a mesh are mostly neighbours), falling back to the far-field guess.
-      catar::Vec3 previous = catar::Vec3::Zero();
-      bool havePrevious = false;
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        const catar::ProjectedPoint q = coherent && havePrevious
-          ? projector.ProjectWorldNear(points(i), previous)
-          : projector.ProjectWorld(points(i), solver);
-        havePrevious = catar::HasProjection(q.status);
-        previous = q.mirrorPoint;
+      auto store = [&](vtkIdType i, const catar::ProjectedPoint& q) {
         px[2 * i] = q.pixel.x();
         px[2 * i + 1] = q.pixel.y();
         mp[3 * i] = q.mirrorPoint.x();
@@ -224,6 +259,42 @@ int vtkCatadioptricProjection::RequestData(
         pl[i] = q.pathLength;
         st[i] = static_cast<unsigned char>(q.status);
         vi[i] = catar::HasProjection(q.status) ? 1 : 0;
+      };
+      // ITERATIVE starts each point's Newton at the reflection of a point just before it (points
+      // that follow each other in a mesh are mostly neighbours): the first W points of a range
+      // one by one, each from the previous one's; then W at a time, solved side by side (see
+      // SphereProjector::ProjectWorldNear), each from the point W places before it. Points
+      // without such a start use the far-field guess.
+      constexpr vtkIdType W = catar::detail::MirrorFrame::kLanes;
+      const vtkIdType serialEnd = coherent ? std::min(end, begin + W) : end;
+      catar::Vec3 previous = catar::Vec3::Zero();
+      bool havePrevious = false;
+      for (vtkIdType i = begin; i < serialEnd; ++i)
+      {
+        const catar::ProjectedPoint q = coherent && havePrevious
+          ? projector.ProjectWorldNear(points(i), previous)
+          : projector.ProjectWorld(points(i), solver);
+        havePrevious = catar::HasProjection(q.status);
+        previous = q.mirrorPoint;
+        store(i, q);
+      }
+      const catar::Vec3 none = catar::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+      catar::Vec3 p[W], guess[W];
+      catar::ProjectedPoint q[W];
+      for (vtkIdType first = serialEnd; first < end; first += W)
+      {
+        const vtkIdType n = std::min(W, end - first);
+        for (vtkIdType l = 0; l < n; ++l)
+        {
+          const vtkIdType from = first + l - W;
+          p[l] = points(first + l);
+          guess[l] = vi[from] ? catar::Vec3(mp + 3 * from) : none;
+        }
+        projector.ProjectWorldNear(static_cast<std::size_t>(n), p, guess, q);
+        for (vtkIdType l = 0; l < n; ++l)
+        {
+          store(first + l, q[l]);
+        }
       }
     });
   }

@@ -362,7 +362,8 @@ namespace detail
 bool QuarticReflectionAngle(double a, double bx, double by, double lo, double hi, double& theta)
 {
   double u = 0.0;
-  if (!QuarticRootInBracket(ReflectionQuartic(a, bx, by), std::tan(0.5 * lo), std::tan(0.5 * hi), u))
+  if (!QuarticRootInBracket(
+        ReflectionQuartic(a, bx, by), std::tan(0.5 * lo), std::tan(0.5 * hi), u))
   {
     return false;
   }
@@ -518,6 +519,81 @@ ProjectionStatus MirrorFrame::Reflect(
   mirrorPoint = this->Centre + this->Radius * (c * this->E1 + s * e2);
   return ProjectionStatus::Valid;
 }
+
+void MirrorFrame::ReflectNear(
+  int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints, unsigned char* settled) const
+{
+  // The guess branch of Reflect, operation for operation, each stage for every lane before the
+  // next stage: the lanes' divisions and square roots overlap instead of waiting on each other.
+  constexpr int W = kLanes;
+  n = std::min(n, W);
+  double bx[W], by[W], u[W], q[W][5];
+  Vec3 e2[W];
+  bool ok[W];
+  for (int l = 0; l < n; ++l)
+  {
+    const Vec3 B = (points[l] - this->Centre) * this->InvRadius;
+    const double b = B.norm();
+    bx[l] = B.dot(this->E1);
+    const Vec3 perp = B - bx[l] * this->E1;
+    by[l] = perp.norm();
+    // Outside the mirror by more than the touching tolerance, off the axis (Reflect's cases).
+    ok[l] = this->Valid && std::isfinite(b) && b > 1.0 + kOnSurfaceTolerance && by[l] > 1e-300 &&
+      by[l] > 1e-15 * b;
+    e2[l] = perp / by[l];
+  }
+  for (int l = 0; l < n; ++l)
+  {
+    const Vec3 d = guesses[l] - this->Centre;
+    const double gc = d.dot(this->E1);
+    const double gs = d.dot(e2[l]);
+    const double gn = std::sqrt(gc * gc + gs * gs);
+    ok[l] = ok[l] && gn > 0.0 && gc > -0.5 * gn && std::isfinite(gn);
+    u[l] = gs / (gn + gc);
+    const ReflectionQuartic quartic(this->A, bx[l], by[l]);
+    std::copy(quartic.c, quartic.c + 5, q[l]);
+  }
+  // Plain Newton, as Reflect: a lane stops at its first step below the tolerance (that step
+  // taken); lanes still moving after four steps are not settled.
+  bool converged[W] = {};
+  for (int it = 0; it < 4; ++it)
+  {
+    bool moving = false;
+    for (int l = 0; l < n; ++l)
+    {
+      if (converged[l] || !ok[l])
+      {
+        continue;
+      }
+      double dq = 0.0;
+      const double step = detail::PolyEval(q[l], u[l], dq) / dq;
+      u[l] -= step;
+      converged[l] = std::abs(step) <= 1e-9 * (1.0 + std::abs(u[l]));
+      moving = moving || !converged[l];
+    }
+    if (!moving)
+    {
+      break;
+    }
+  }
+  for (int l = 0; l < n; ++l)
+  {
+    settled[l] = 0;
+    if (!ok[l] || !converged[l] || !(u[l] >= 0.0))
+    {
+      continue;
+    }
+    double c = 0.0, sn = 0.0;
+    CircleAt(u[l], c, sn);
+    const double bn = bx[l] * c + by[l] * sn - 1.0;
+    const double bt = by[l] * c - bx[l] * sn;
+    if (CameraSees(this->A, c, sn) && bn > 0.0 && bt >= 0.0)
+    {
+      mirrorPoints[l] = this->Centre + this->Radius * (c * this->E1 + sn * e2[l]);
+      settled[l] = 1;
+    }
+  }
+}
 } // namespace detail
 
 ProjectionStatus SphereReflectionPoint(
@@ -541,14 +617,49 @@ ProjectedPoint SphereProjector::ProjectCamera(const Vec3& p, SolverType solver) 
   return this->ProjectCameraFrom(p, solver, nullptr);
 }
 
-ProjectedPoint SphereProjector::ProjectWorldNear(
-  const Vec3& pWorld, const Vec3& mirrorGuess) const
+ProjectedPoint SphereProjector::ProjectWorldNear(const Vec3& pWorld, const Vec3& mirrorGuess) const
 {
   if (!pWorld.allFinite() || !mirrorGuess.allFinite())
   {
     return this->ProjectWorld(pWorld, SolverType::Iterative);
   }
   return this->ProjectCameraFrom(this->R * pWorld + this->T, SolverType::Iterative, &mirrorGuess);
+}
+
+void SphereProjector::ProjectWorldNear(
+  std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess, ProjectedPoint* out) const
+{
+  constexpr int W = detail::MirrorFrame::kLanes;
+  for (std::size_t first = 0; first < n; first += W)
+  {
+    const int lanes = static_cast<int>(std::min<std::size_t>(W, n - first));
+    Vec3 p[W], guess[W], r[W];
+    unsigned char fast[W];
+    int count = 0;
+    int lane[W];
+    for (int l = 0; l < lanes; ++l)
+    {
+      const Vec3& w = pWorld[first + l];
+      const Vec3& g = mirrorGuess[first + l];
+      if (this->Valid && w.allFinite() && g.allFinite())
+      {
+        p[count] = this->R * w + this->T;
+        guess[count] = g;
+        lane[count++] = l;
+      }
+      else
+      {
+        out[first + l] = this->ProjectWorldNear(w, g);
+      }
+    }
+    this->Frame.ReflectNear(count, p, guess, r, fast);
+    for (int k = 0; k < count; ++k)
+    {
+      ProjectedPoint& o = out[first + lane[k]];
+      o = fast[k] ? this->Finish(p[k], r[k])
+                  : this->ProjectCameraFrom(p[k], SolverType::Iterative, &guess[k]);
+    }
+  }
 }
 
 ProjectedPoint SphereProjector::ProjectCameraFrom(
@@ -567,6 +678,12 @@ ProjectedPoint SphereProjector::ProjectCameraFrom(
     out.status = s;
     return out;
   }
+  return this->Finish(p, r);
+}
+
+ProjectedPoint SphereProjector::Finish(const Vec3& p, const Vec3& r) const
+{
+  ProjectedPoint out;
   // The camera images only mirror points in front of it.
   if (!(r.z() > 0.0 && r.z() * r.z() > 1e-24 * r.squaredNorm()))
   {

@@ -23,6 +23,8 @@
 
 #include "CameraModel.h"
 
+#include <cstddef>
+
 namespace catar
 {
 /// Which algorithm finds the reflection point.
@@ -67,8 +69,18 @@ public:
   /// As SphereReflectionPoint (InvalidInput for every point when the mirror is invalid).
   /// guess (optional): a point near the answer, e.g. a neighbour's reflection point; Newton then
   /// starts there (in place of the solver's start) and needs one or two steps.
-  ProjectionStatus Reflect(const Vec3& point, SolverType solver, Vec3& mirrorPoint,
-    const Vec3* guess = nullptr) const;
+  ProjectionStatus Reflect(
+    const Vec3& point, SolverType solver, Vec3& mirrorPoint, const Vec3* guess = nullptr) const;
+
+  /// Points solved side by side in ReflectNear.
+  static constexpr int kLanes = 8;
+  /// Reflect(points[i], Iterative, mirrorPoints[i], &guesses[i]) for n <= kLanes points side by
+  /// side (each step of the plain Newton from the guess is taken for all of them before the next,
+  /// so that their arithmetic overlaps): settled[i] = 1 where that Newton settles on the arc both
+  /// ends see, with the same mirror point as Reflect; 0 elsewhere (there Reflect decides: the
+  /// point touches or is inside the mirror, the guess is far, the point is on the axis, ...).
+  void ReflectNear(int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints,
+    unsigned char* settled) const;
 
 private:
   Vec3 Centre;
@@ -101,6 +113,11 @@ public:
   /// centroid): the same answer as either solver (the same safeguarded Newton, to the same
   /// tolerance) in fewer steps. A guess far off costs steps, never accuracy.
   ProjectedPoint ProjectWorldNear(const Vec3& pWorld, const Vec3& mirrorGuess) const;
+  /// ProjectWorldNear for n points: out[i] = ProjectWorldNear(pWorld[i], mirrorGuess[i]), the same
+  /// results, solved several points side by side (about twice as fast per point as one call
+  /// each). A guess that is not finite starts that point from the iterative solver's own guess.
+  void ProjectWorldNear(
+    std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess, ProjectedPoint* out) const;
 
   /// Back projection of a pixel: the reflected ray in the camera frame / world frame.
   /// Pixels whose ray misses the mirror give NoReflection; pixels outside the image are still
@@ -110,6 +127,8 @@ public:
 
 private:
   ProjectedPoint ProjectCameraFrom(const Vec3& p, SolverType solver, const Vec3* mirrorGuess) const;
+  // The camera-side end of a projection: r is p's reflection point (both camera frame).
+  ProjectedPoint Finish(const Vec3& p, const Vec3& r) const;
 
   CameraModel Model;
   bool Valid = false;

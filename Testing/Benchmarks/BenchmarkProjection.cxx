@@ -1,5 +1,5 @@
-// Forward-projection cost per point of each solver (and from a nearby point's reflection), back-projection cost per pixel, and raster
-// cost per triangle, single-threaded. Run:
+// Forward-projection cost per point of each solver (and from a nearby point's reflection),
+// back-projection cost per pixel, and raster cost per triangle, single-threaded. Run:
 //   build/bin/BenchmarkProjection [--benchmark_out=projection.csv --benchmark_out_format=csv]
 // The counter ns_per_item is the cost of one point / pixel / triangle.
 #include "Rasterizer.h"
@@ -84,6 +84,29 @@ void BM_ForwardProjectionNear(benchmark::State& state)
   SetPerItem(state, pts.size());
 }
 BENCHMARK(BM_ForwardProjectionNear)->Arg(10)->Arg(100);
+
+// The same points and guesses through the many-points call (points solved side by side).
+void BM_ForwardProjectionNearBatch(benchmark::State& state)
+{
+  const double offset = 1e-4 * static_cast<double>(state.range(0));
+  state.SetLabel("start " + std::to_string(offset * 1e3) + " mm away");
+  const CameraModel model = DemoScene().camera;
+  const SphereProjector proj(model);
+  const std::vector<Vec3> pts = ScenePoints(model, 4096);
+  std::vector<Vec3> guesses;
+  for (const Vec3& p : pts)
+  {
+    guesses.push_back(proj.ProjectWorld(p + Vec3(offset, -offset, offset)).mirrorPoint);
+  }
+  std::vector<ProjectedPoint> out(pts.size());
+  for (auto _ : state)
+  {
+    proj.ProjectWorldNear(pts.size(), pts.data(), guesses.data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+  }
+  SetPerItem(state, pts.size());
+}
+BENCHMARK(BM_ForwardProjectionNearBatch)->Arg(10)->Arg(100);
 
 void BM_BackProjection(benchmark::State& state)
 {

@@ -204,8 +204,83 @@ TEST(SphereProjection, StartingNearbyGivesTheSameAnswer)
     }
     EXPECT_GT(valid, 1000);
     EXPECT_LE(worst, 1e-12);
-    std::printf("[%s] started nearby or anywhere: worst difference %.2e R\n", g.name.c_str(),
-      worst);
+    std::printf(
+      "[%s] started nearby or anywhere: worst difference %.2e R\n", g.name.c_str(), worst);
+  }
+}
+
+TEST(SphereProjection, ManyPointsAtOnceGiveWhatOneAtATimeGives)
+{
+  // ProjectWorldNear(n, ...) solves points side by side; each result must be bit for bit the
+  // one-point call's, whatever mix of points (inside the mirror, touching it, on the axis, hidden,
+  // far) and guesses (close, anywhere, NaN) a batch holds, and for any batch length.
+  std::mt19937_64 rng(5);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Geometry& g : Geometries())
+  {
+    SCOPED_TRACE(g.name);
+    const SphereProjector proj(g.model);
+    const Vec3 c = g.model.mirror.center;
+    const double R = g.model.mirror.radius;
+    std::vector<Vec3> points, guesses;
+    std::uniform_int_distribution<int> kind(0, 9);
+    std::uniform_real_distribution<double> logd(std::log(0.5), std::log(200.0));
+    for (int i = 0; i < 5000; ++i)
+    {
+      Vec3 pCam = c + R * std::exp(logd(rng)) * RandomUnit(rng);
+      const int k = kind(rng);
+      if (k == 0)
+      {
+        pCam = c + 0.5 * R * RandomUnit(rng); // inside the mirror
+      }
+      else if (k == 1)
+      {
+        pCam = c + R * RandomUnit(rng); // on it
+      }
+      else if (k == 2)
+      {
+        pCam = c * (1.0 + std::exp(logd(rng)) * R / c.norm()); // on the camera-mirror axis
+      }
+      const Vec3 pWorld = g.model.CameraToWorld(pCam);
+      const Vec3 answer = proj.ProjectWorld(pWorld, SolverType::Iterative).mirrorPoint;
+      Vec3 guess =
+        proj.ProjectWorld(g.model.CameraToWorld(pCam + 1e-3 * R * RandomUnit(rng))).mirrorPoint;
+      if (k == 3)
+      {
+        guess = c + R * RandomUnit(rng);
+      }
+      else if (k == 4)
+      {
+        guess = Vec3(nan, 0, 0);
+      }
+      else if (k == 5)
+      {
+        guess = 2.0 * c - answer;
+      }
+      points.push_back(k == 6 && i % 7 == 0 ? Vec3(nan, nan, nan) : pWorld);
+      guesses.push_back(guess);
+    }
+    int valid = 0;
+    for (const std::size_t length :
+      { std::size_t(1), std::size_t(5), std::size_t(8), std::size_t(13), points.size() })
+    {
+      std::vector<ProjectedPoint> out(points.size());
+      for (std::size_t first = 0; first < points.size(); first += length)
+      {
+        const std::size_t n = std::min(length, points.size() - first);
+        proj.ProjectWorldNear(n, points.data() + first, guesses.data() + first, out.data() + first);
+      }
+      for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        const ProjectedPoint one = proj.ProjectWorldNear(points[i], guesses[i]);
+        ASSERT_EQ(out[i].status, one.status) << i;
+        ASSERT_EQ(out[i].mirrorPoint, one.mirrorPoint) << i;
+        ASSERT_EQ(out[i].pixel, one.pixel) << i;
+        ASSERT_EQ(out[i].pathLength, one.pathLength) << i;
+        valid += HasProjection(one.status);
+      }
+    }
+    EXPECT_GT(valid, 1000);
   }
 }
 
