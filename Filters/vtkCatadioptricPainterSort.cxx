@@ -5,7 +5,6 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkSmartPointer.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -13,6 +12,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -44,25 +44,31 @@ inline std::uint64_t FarToNearKey(double depth)
   return ~ascending;
 }
 
-// Stable LSD radix sort of `order` by keys[order[i]] (11-bit digits; passes whose digit is the same
-// for every key are skipped, as the high bits of depths within one scene mostly are). Stability
-// keeps equal depths in input order.
-void RadixSort(std::vector<vtkIdType>& order, const std::vector<std::uint64_t>& keys)
+// A cell to sort: its key and its polygon index.
+struct KeyedCell
+{
+  std::uint64_t key;
+  vtkIdType cell;
+};
+
+// Stable LSD radix sort by key (11-bit digits; passes whose digit is the same for every key are
+// skipped, as the high bits of depths within one scene mostly are). Key and index move together,
+// so each pass reads its input in order. Stability keeps equal depths in input order.
+void RadixSort(std::vector<KeyedCell>& cells)
 {
   constexpr int kBits = 11;
   constexpr int kPasses = (64 + kBits - 1) / kBits;
   constexpr std::size_t kBuckets = std::size_t(1) << kBits;
-  const std::size_t n = order.size();
+  const std::size_t n = cells.size();
   std::vector<std::uint32_t> counts(kPasses * kBuckets, 0);
-  for (const vtkIdType c : order)
+  for (const KeyedCell& c : cells)
   {
-    const std::uint64_t k = keys[c];
     for (int p = 0; p < kPasses; ++p)
     {
-      ++counts[p * kBuckets + ((k >> (p * kBits)) & (kBuckets - 1))];
+      ++counts[p * kBuckets + ((c.key >> (p * kBits)) & (kBuckets - 1))];
     }
   }
-  std::vector<vtkIdType> scratch(n);
+  std::vector<KeyedCell> scratch(n);
   for (int p = 0; p < kPasses; ++p)
   {
     std::uint32_t* count = counts.data() + p * kBuckets;
@@ -77,65 +83,155 @@ void RadixSort(std::vector<vtkIdType>& order, const std::vector<std::uint64_t>& 
       count[b] = sum;
       sum += c;
     }
-    for (const vtkIdType c : order)
+    for (const KeyedCell& c : cells)
     {
-      scratch[count[(keys[c] >> (p * kBits)) & (kBuckets - 1)]++] = c;
+      scratch[count[(c.key >> (p * kBits)) & (kBuckets - 1)]++] = c;
     }
-    order.swap(scratch);
+    cells.swap(scratch);
   }
 }
 
-// The polygons of `polys` in the given order (offsets/connectivity gathered directly, in the
-// input's storage type).
-template<typename ArrayT>
-vtkSmartPointer<vtkCellArray> Reordered(
-  ArrayT* inOffsets, ArrayT* inConnectivity, const std::vector<vtkIdType>& order)
+// How many cells ahead the gather asks for what it will read.
+constexpr vtkIdType kPrefetchCells = 16;
+
+// One cell-data array with the standard memory layout, copied tuple by tuple as bytes.
+struct TupleGather
 {
-  using ValueT = typename ArrayT::ValueType;
-  const auto* off = inOffsets->GetPointer(0);
-  const auto* conn = inConnectivity->GetPointer(0);
-  const vtkIdType n = static_cast<vtkIdType>(order.size());
-  vtkNew<ArrayT> offsets;
-  offsets->SetNumberOfValues(n + 1);
-  ValueT* outOff = offsets->GetPointer(0);
-  outOff[0] = 0;
-  for (vtkIdType i = 0; i < n; ++i)
+  const unsigned char* from;
+  unsigned char* to;
+  std::size_t width; // bytes per tuple
+};
+
+inline void CopyTuple(const TupleGather& t, vtkIdType to, vtkIdType from)
+{
+  unsigned char* d = t.to + to * t.width;
+  const unsigned char* s = t.from + from * t.width;
+  // Sizes the pipeline makes are copied inline, not by a call per tuple.
+  switch (t.width)
   {
-    const vtkIdType c = order[i];
-    outOff[i + 1] = outOff[i] + (off[c + 1] - off[c]);
+    case 1:
+      *d = *s;
+      break;
+    case 8:
+      std::memcpy(d, s, 8);
+      break;
+    case 24:
+      std::memcpy(d, s, 24);
+      break;
+    default:
+      std::memcpy(d, s, t.width);
+      break;
   }
-  vtkNew<ArrayT> connectivity;
-  connectivity->SetNumberOfValues(outOff[n]);
-  ValueT* outConn = connectivity->GetPointer(0);
+}
+
+// The polygons in `order` (cell c is polygon c of the input, cell data index first + c) and the
+// tuples of the standard-layout cell arrays, in one parallel pass. The reads go through the order,
+// so they are random: each task asks for the cells a few ahead. Connectivity is written in 32-bit
+// storage (OutT) when the ids fit: half the bytes to write here and to read in the compositor.
+// `triangles`: every input polygon has three points (offsets 3c, no offsets to read).
+template<typename InT, typename OutT>
+void GatherCells(const InT* off, const InT* conn, const std::vector<vtkIdType>& order,
+  vtkIdType first, bool triangles, const std::vector<TupleGather>& tuples, OutT* outOff,
+  OutT* outConn)
+{
+  const vtkIdType n = static_cast<vtkIdType>(order.size());
+  if (!triangles)
+  {
+    outOff[0] = 0;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const vtkIdType c = order[i];
+      outOff[i + 1] = outOff[i] + static_cast<OutT>(off[c + 1] - off[c]);
+    }
+  }
   vtkCatadioptricParallel::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType i = b; i < e; ++i)
     {
-      const vtkIdType c = order[i];
-      const auto* from = conn + off[c];
-      auto* to = outConn + outOff[i];
-      const auto size = off[c + 1] - off[c];
-      if (size == 3) // triangles, inline
+      if (i + kPrefetchCells < e)
       {
-        to[0] = from[0];
-        to[1] = from[1];
-        to[2] = from[2];
+        const vtkIdType ahead = order[i + kPrefetchCells];
+        vtkCatadioptricParallel::Prefetch(conn + (triangles ? 3 * ahead : off[ahead]));
+        for (const TupleGather& t : tuples)
+        {
+          vtkCatadioptricParallel::Prefetch(t.from + (first + ahead) * t.width);
+        }
+      }
+      const vtkIdType c = order[i];
+      if (triangles)
+      {
+        outOff[i] = static_cast<OutT>(3 * i);
+        const InT* from = conn + 3 * c;
+        OutT* to = outConn + 3 * i;
+        to[0] = static_cast<OutT>(from[0]);
+        to[1] = static_cast<OutT>(from[1]);
+        to[2] = static_cast<OutT>(from[2]);
       }
       else
       {
-        std::copy(from, from + size, to);
+        std::transform(conn + off[c], conn + off[c + 1], outConn + outOff[i],
+          [](InT v) { return static_cast<OutT>(v); });
+      }
+      for (const TupleGather& t : tuples)
+      {
+        CopyTuple(t, i, first + c);
       }
     }
   });
+  if (triangles)
+  {
+    outOff[n] = static_cast<OutT>(3 * n);
+  }
+}
+
+template<typename OutArrayT, typename InArrayT>
+vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnectivity,
+  const std::vector<vtkIdType>& order, vtkIdType first, bool triangles,
+  const std::vector<TupleGather>& tuples)
+{
+  const auto* off = inOffsets->GetPointer(0);
+  vtkIdType total = 0;
+  if (triangles)
+  {
+    total = 3 * static_cast<vtkIdType>(order.size());
+  }
+  else
+  {
+    for (const vtkIdType c : order)
+    {
+      total += static_cast<vtkIdType>(off[c + 1] - off[c]);
+    }
+  }
+  vtkNew<OutArrayT> offsets;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(order.size()) + 1);
+  vtkNew<OutArrayT> connectivity;
+  connectivity->SetNumberOfValues(total);
+  GatherCells(off, inConnectivity->GetPointer(0), order, first, triangles, tuples,
+    offsets->GetPointer(0), connectivity->GetPointer(0));
   auto polys = vtkSmartPointer<vtkCellArray>::New();
   polys->SetData(offsets, connectivity);
   return polys;
 }
 
-// out[i] = in[source[i]], tuple by tuple, for every cell array; attributes (active scalars,
-// normals, ...) are kept.
-void GatherCellData(vtkCellData* in, vtkCellData* out, const std::vector<vtkIdType>& source)
+template<typename InArrayT>
+vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnectivity,
+  const std::vector<vtkIdType>& order, vtkIdType first, bool triangles,
+  const std::vector<TupleGather>& tuples, bool ids32)
 {
-  const vtkIdType n = static_cast<vtkIdType>(source.size());
+  if (ids32)
+  {
+    return Gathered<vtkTypeInt32Array>(inOffsets, inConnectivity, order, first, triangles, tuples);
+  }
+  return Gathered<vtkTypeInt64Array>(inOffsets, inConnectivity, order, first, triangles, tuples);
+}
+
+// Output cell arrays like the input's (name, components, attributes), sized for n tuples. Arrays
+// with the standard memory layout are listed in `tuples` for GatherCells; the others are filled
+// here, tuple by tuple.
+std::vector<TupleGather> PrepareCellData(
+  vtkCellData* in, vtkCellData* out, const std::vector<vtkIdType>& order, vtkIdType first)
+{
+  std::vector<TupleGather> tuples;
+  const vtkIdType n = static_cast<vtkIdType>(order.size());
   for (int a = 0; a < in->GetNumberOfArrays(); ++a)
   {
     vtkAbstractArray* src = in->GetAbstractArray(a);
@@ -146,36 +242,15 @@ void GatherCellData(vtkCellData* in, vtkCellData* out, const std::vector<vtkIdTy
     dst->SetNumberOfTuples(n);
     if (src->HasStandardMemoryLayout() && dst->HasStandardMemoryLayout())
     {
-      const std::size_t bytes =
-        static_cast<std::size_t>(src->GetNumberOfComponents()) * src->GetDataTypeSize();
-      const auto* from = static_cast<const unsigned char*>(src->GetVoidPointer(0));
-      auto* to = static_cast<unsigned char*>(dst->GetVoidPointer(0));
-      // Tuples of a size known at compile time are copied inline, not by a call per tuple.
-      auto gather = [&](auto size) {
-        constexpr std::size_t B = decltype(size)::value;
-        const std::size_t width = B ? B : bytes;
-        vtkCatadioptricParallel::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
-          for (vtkIdType i = b; i < e; ++i)
-          {
-            std::memcpy(to + i * width, from + source[i] * width, B ? B : width);
-          }
-        });
-      };
-      switch (bytes)
-      {
-        case 1: gather(std::integral_constant<std::size_t, 1>()); break;
-        case 4: gather(std::integral_constant<std::size_t, 4>()); break;
-        case 8: gather(std::integral_constant<std::size_t, 8>()); break;
-        case 12: gather(std::integral_constant<std::size_t, 12>()); break;
-        case 24: gather(std::integral_constant<std::size_t, 24>()); break;
-        default: gather(std::integral_constant<std::size_t, 0>()); break;
-      }
+      tuples.push_back({ static_cast<const unsigned char*>(src->GetVoidPointer(0)),
+        static_cast<unsigned char*>(dst->GetVoidPointer(0)),
+        static_cast<std::size_t>(src->GetNumberOfComponents()) * src->GetDataTypeSize() });
     }
     else
     {
       for (vtkIdType i = 0; i < n; ++i)
       {
-        dst->SetTuple(i, source[i], src);
+        dst->SetTuple(i, first + order[i], src);
       }
     }
     out->AddArray(dst);
@@ -187,6 +262,7 @@ void GatherCellData(vtkCellData* in, vtkCellData* out, const std::vector<vtkIdTy
       }
     }
   }
+  return tuples;
 }
 } // namespace
 
@@ -224,48 +300,49 @@ int vtkCatadioptricPainterSort::RequestData(
 
   const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
   const vtkIdType nPolys = input->GetNumberOfPolys();
-  std::vector<vtkIdType> order;
-  order.reserve(nPolys);
   const unsigned char* vis = visible ? visible->GetPointer(first) : nullptr;
+  auto* depthDoubles = vtkDoubleArray::SafeDownCast(depthArray);
+  std::vector<KeyedCell> cells;
+  cells.reserve(nPolys);
   for (vtkIdType c = 0; c < nPolys; ++c)
   {
     if (!this->DropInvisibleCells || vis[c])
     {
-      order.push_back(c);
+      cells.push_back({ FarToNearKey(depthDoubles ? depthDoubles->GetValue(first + c)
+                                                  : depthArray->GetComponent(first + c, 0)),
+        c });
     }
   }
-  std::vector<std::uint64_t> keys(nPolys);
-  auto* depthDoubles = vtkDoubleArray::SafeDownCast(depthArray);
-  for (vtkIdType c = 0; c < nPolys; ++c)
-  {
-    keys[c] = FarToNearKey(depthDoubles ? depthDoubles->GetValue(first + c)
-                                        : depthArray->GetComponent(first + c, 0));
-  }
   this->UpdateProgress(0.2);
-  // Far to near; equal depths keep input order (a stable sort of indices in input order).
-  RadixSort(order, keys);
+  // Far to near; equal depths keep input order (a stable sort of cells in input order).
+  RadixSort(cells);
+  std::vector<vtkIdType> order(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i)
+  {
+    order[i] = cells[i].cell;
+  }
   this->UpdateProgress(0.6);
 
-  // New polygon connectivity in the sorted order.
+  // New polygon connectivity and cell data in the sorted order.
   vtkCellArray* inPolys = input->GetPolys();
+  const bool ids32 = input->GetNumberOfPoints() <= VTK_TYPE_INT32_MAX &&
+    inPolys->GetNumberOfConnectivityIds() <= VTK_TYPE_INT32_MAX;
+  const bool triangles = inPolys->IsHomogeneous() == 3;
+  vtkCellData* outCD = output->GetCellData();
+  const std::vector<TupleGather> tuples =
+    PrepareCellData(input->GetCellData(), outCD, order, first);
   vtkSmartPointer<vtkCellArray> polys = inPolys->IsStorage64Bit()
-    ? Reordered(inPolys->GetOffsetsArray64(), inPolys->GetConnectivityArray64(), order)
-    : Reordered(inPolys->GetOffsetsArray32(), inPolys->GetConnectivityArray32(), order);
+    ? Gathered(inPolys->GetOffsetsArray64(), inPolys->GetConnectivityArray64(), order, first,
+        triangles, tuples, ids32)
+    : Gathered(inPolys->GetOffsetsArray32(), inPolys->GetConnectivityArray32(), order, first,
+        triangles, tuples, ids32);
 
   output->SetPoints(input->GetPoints());
   output->GetPointData()->PassData(input->GetPointData());
   output->GetFieldData()->PassData(input->GetFieldData());
   output->SetPolys(polys);
 
-  // Cell data follows the cells.
   const vtkIdType nOut = static_cast<vtkIdType>(order.size());
-  std::vector<vtkIdType> source(order.size());
-  for (vtkIdType i = 0; i < nOut; ++i)
-  {
-    source[i] = first + order[i];
-  }
-  vtkCellData* outCD = output->GetCellData();
-  GatherCellData(input->GetCellData(), outCD, source);
   // OriginalCellId: each cell's index in the input, unless the input already carries the ids of
   // an earlier stage (then they were copied above, reordered with the cells).
   if (!input->GetCellData()->GetArray("OriginalCellId"))
@@ -273,7 +350,11 @@ int vtkCatadioptricPainterSort::RequestData(
     vtkNew<vtkIdTypeArray> original;
     original->SetName("OriginalCellId");
     original->SetNumberOfTuples(nOut);
-    std::copy(source.begin(), source.end(), original->GetPointer(0));
+    vtkIdType* ids = original->GetPointer(0);
+    for (vtkIdType i = 0; i < nOut; ++i)
+    {
+      ids[i] = first + order[i];
+    }
     outCD->AddArray(original);
   }
   this->UpdateProgress(1.0);

@@ -39,6 +39,17 @@ public:
   /// The number of threads a loop uses (the caller's included).
   static int GetNumberOfThreads();
 
+  /// Asks for the cache line at p, which a loop body will read soon (gathers through an index:
+  /// the misses of several elements then overlap). A hint only; nothing on other compilers.
+  static void Prefetch(const void* p)
+  {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+  }
+
 private:
   using RangeFunction = void (*)(void*, vtkIdType, vtkIdType);
   static void Run(

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 vtkStandardNewMacro(vtkCatadioptricProjection);
 
@@ -32,14 +33,24 @@ namespace
 // few hundred points; smaller meshes are projected inline.
 constexpr vtkIdType kPointGrain = 512;
 
+// What the cells read of each vertex, in one cache line: the cells visit their vertices in no
+// particular order, and four arrays would cost four cache misses per vertex.
+struct alignas(64) VertexRecord
+{
+  double point[3]; // world
+  double pixel[2]; // image coordinates
+  float mirror[3]; // reflection point (camera frame): where the centroids' Newton starts
+  unsigned char visible;
+};
+
+// How many cells ahead the cell loop asks for its vertices' records.
+constexpr vtkIdType kPrefetchCells = 8;
+
 // Projects the polygons' centroids and decides cell visibility; runs over a range of polygons.
 struct CellWorker
 {
   const catar::SphereProjector* Projector;
-  const vtkCatadioptricPointReader* Points;
-  const unsigned char* PointVisible;
-  const double* Pixels;
-  const double* MirrorPoints; // the vertices' reflection points: where the centroids' start
+  const VertexRecord* Vertices;
   double* Depth;
   double* CentroidMirror;
   unsigned char* Visible;
@@ -56,6 +67,14 @@ struct CellWorker
     Batch batch;
     for (vtkIdType c = begin; c < end; ++c)
     {
+      if (c + kPrefetchCells < end)
+      {
+        // The vertices of a cell a few ahead: their cache misses overlap this cell's work.
+        for (const auto id : state.GetCellRange(c + kPrefetchCells))
+        {
+          vtkCatadioptricParallel::Prefetch(this->Vertices + id);
+        }
+      }
       const auto ids = state.GetCellRange(c);
       const vtkIdType out = this->CellOffset + c;
       this->Depth[out] = 0.0;
@@ -69,29 +88,30 @@ struct CellWorker
       catar::Vec3 centroid = catar::Vec3::Zero();
       catar::Vec3 guess = catar::Vec3::Zero();
       catar::Vec3 normal = catar::Vec3::Zero(); // Newell's normal, |normal| = 2 area
-      catar::Vec3 last = this->CullBackFaces ? (*this->Points)(ids[n - 1]) : catar::Vec3::Zero();
+      const double* lp = this->Vertices[ids[n - 1]].point;
+      catar::Vec3 last(lp[0], lp[1], lp[2]);
       bool all = true;
       double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
       for (const auto id : ids)
       {
-        if (!this->PointVisible[id])
+        const VertexRecord& v = this->Vertices[id];
+        if (!v.visible)
         {
           all = false;
           break;
         }
-        const catar::Vec3 p = (*this->Points)(id);
+        const catar::Vec3 p(v.point[0], v.point[1], v.point[2]);
         centroid += p;
         if (this->CullBackFaces)
         {
           normal += last.cross(p);
           last = p;
         }
-        guess += catar::Vec3(this->MirrorPoints + 3 * id);
-        const double* px = this->Pixels + 2 * id;
-        xmin = std::min(xmin, px[0]);
-        xmax = std::max(xmax, px[0]);
-        ymin = std::min(ymin, px[1]);
-        ymax = std::max(ymax, px[1]);
+        guess += catar::Vec3(v.mirror[0], v.mirror[1], v.mirror[2]);
+        xmin = std::min(xmin, v.pixel[0]);
+        xmax = std::max(xmax, v.pixel[0]);
+        ymin = std::min(ymin, v.pixel[1]);
+        ymax = std::max(ymax, v.pixel[1]);
       }
       if (!all)
       {
@@ -240,6 +260,7 @@ int vtkCatadioptricProjection::RequestData(
   pvis->SetNumberOfTuples(nPts);
 
   this->UpdateProgress(0.0);
+  std::unique_ptr<VertexRecord[]> records(new VertexRecord[std::max<vtkIdType>(nPts, 1)]);
   if (nPts > 0)
   {
     const vtkCatadioptricPointReader points(input->GetPoints());
@@ -259,6 +280,15 @@ int vtkCatadioptricProjection::RequestData(
         pl[i] = q.pathLength;
         st[i] = static_cast<unsigned char>(q.status);
         vi[i] = catar::HasProjection(q.status) ? 1 : 0;
+        VertexRecord& r = records[i];
+        const catar::Vec3 p = points(i);
+        std::copy(p.data(), p.data() + 3, r.point);
+        std::copy(q.pixel.data(), q.pixel.data() + 2, r.pixel);
+        for (int k = 0; k < 3; ++k)
+        {
+          r.mirror[k] = static_cast<float>(q.mirrorPoint[k]);
+        }
+        r.visible = vi[i];
       };
       // ITERATIVE starts each point's Newton at the reflection of a point just before it (points
       // that follow each other in a mesh are mostly neighbours): the first W points of a range
@@ -326,13 +356,9 @@ int vtkCatadioptricProjection::RequestData(
   }
   if (input->GetNumberOfPolys() > 0 && nPts > 0)
   {
-    const vtkCatadioptricPointReader points(input->GetPoints());
     CellWorker worker;
     worker.Projector = &projector;
-    worker.Points = &points;
-    worker.PointVisible = pvis->GetPointer(0);
-    worker.Pixels = pixels->GetPointer(0);
-    worker.MirrorPoints = mirror->GetPointer(0);
+    worker.Vertices = records.get();
     worker.Depth = depth->GetPointer(0);
     worker.CentroidMirror = centroidMirror->GetPointer(0);
     worker.Visible = cvis->GetPointer(0);

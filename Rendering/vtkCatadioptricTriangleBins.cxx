@@ -32,10 +32,9 @@ constexpr vtkIdType kPointsPerChunk = 16384;
 constexpr vtkIdType kCellsPerChunk = 4096;
 constexpr vtkIdType kTrianglesPerChunk = 16384;
 // Below this many points and polygons they are read in the calling thread: reading them takes
-// ~1.5 ns each, and a parallel loop costs ~0.1 ms to start (VTK 9.2's STDThread backend starts
-// its threads for every loop) plus the other cores' cache misses on what this one wrote (bunny,
-// 35k points and 69k polygons: 0.30 -> 0.15 ms, measured).
-constexpr vtkIdType kSerialReading = 262144;
+// ~1.5 ns each, and waking the pool's threads costs ~10 us plus the other cores' cache misses on
+// what this one wrote.
+constexpr vtkIdType kSerialReading = 16384;
 
 // Typed access: the array types the pipeline makes are read without a virtual call per value
 // (ImageCoordinates, PathLength, CentroidDepth: double; texture coordinates: float or double;
