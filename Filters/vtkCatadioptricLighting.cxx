@@ -48,9 +48,11 @@ catar::Vec3 V3(const double* v)
   return catar::Vec3(v[0], v[1], v[2]);
 }
 
+// Rounds to nearest, halves up, as std::lround does for these values (without a library call:
+// 255 v + 0.5 is exact for every v in [1/510, 1]).
 unsigned char ToByte(double v)
 {
-  return static_cast<unsigned char>(std::lround(255.0 * std::min(1.0, std::max(0.0, v))));
+  return static_cast<unsigned char>(255.0 * std::min(1.0, std::max(0.0, v)) + 0.5);
 }
 } // namespace
 
@@ -276,6 +278,8 @@ int vtkCatadioptricLighting::RequestData(
     return 0;
   }
   const catar::CameraModel model = camera->GetModel();
+  const catar::Mat3 cameraToWorld = model.worldToCamera.topLeftCorner<3, 3>().transpose();
+  const catar::Vec3 cameraT = model.worldToCamera.topRightCorner<3, 1>();
 
   // Material and base colours.
   vtkProperty* prop = this->Property;
@@ -314,14 +318,16 @@ int vtkCatadioptricLighting::RequestData(
   this->UpdateProgress(0.1);
 
   // The colour of point p with normal n seen from viewer (all world), base colour rgba.
+  // m: this thread's copy of the material, whose colours follow the base colour.
+  const double ambientK = prop->GetAmbient();
+  const double diffuseK = prop->GetDiffuse();
   auto shade = [&](const catar::Vec3& p, catar::Vec3 n, const catar::Vec3& viewer,
-                 const float rgba[4], std::vector<unsigned char>& lit) {
-    catar::Material m = material;
+                 const float rgba[4], catar::Material& m, std::vector<unsigned char>& lit) {
     if (base.HasArray())
     {
       const catar::Vec3 c(rgba[0], rgba[1], rgba[2]);
-      m.ambient = prop->GetAmbient() * c;
-      m.diffuse = prop->GetDiffuse() * c;
+      m.ambient = ambientK * c;
+      m.diffuse = diffuseK * c;
     }
     if (twoSided && n.dot(viewer - p) < 0)
     {
@@ -385,6 +391,7 @@ int vtkCatadioptricLighting::RequestData(
     auto* mirrorDoubles = vtkDoubleArray::SafeDownCast(mirror);
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
       std::vector<unsigned char> lit(lights.size(), 1);
+      catar::Material m = material;
       for (vtkIdType i = b; i < e; ++i)
       {
         unsigned char* o = out + 4 * i;
@@ -422,7 +429,8 @@ int vtkCatadioptricLighting::RequestData(
         {
           std::copy(&pointBase[4 * i], &pointBase[4 * i] + 4, rgba);
         }
-        const catar::Vec3 c = shade(p, n, model.CameraToWorld(V3(mp)), rgba, lit);
+        // The viewer: the reflection point, camera to world (CameraModel::CameraToWorld).
+        const catar::Vec3 c = shade(p, n, cameraToWorld * (V3(mp) - cameraT), rgba, m, lit);
         o[0] = ToByte(c.x());
         o[1] = ToByte(c.y());
         o[2] = ToByte(c.z());
@@ -446,6 +454,7 @@ int vtkCatadioptricLighting::RequestData(
     vtkCatadioptricParallel::For(
       0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
         std::vector<unsigned char> lit(lights.size(), 1);
+        catar::Material m = material;
         vtkNew<vtkIdList> scratch;
         for (vtkIdType c = b; c < e; ++c)
         {
@@ -487,7 +496,7 @@ int vtkCatadioptricLighting::RequestData(
             const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
             double cm[3];
             centroidMirror->GetTuple(cellId, cm);
-            color = shade(centroid, normal, model.CameraToWorld(V3(cm)), rgba, lit);
+            color = shade(centroid, normal, cameraToWorld * (V3(cm) - cameraT), rgba, m, lit);
           }
           unsigned char* o = out + 4 * cellId;
           o[0] = ToByte(color.x());
