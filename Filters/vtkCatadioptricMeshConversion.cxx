@@ -31,7 +31,8 @@ void vtkCatadioptricMeshConversion::ToTriangleMesh(
   if (ignored > 0)
   {
     warnings.push_back(std::to_string(input->GetNumberOfVerts()) + " vertex cells and " +
-      std::to_string(input->GetNumberOfLines()) + " line cells ignored: only surfaces are remeshed");
+      std::to_string(input->GetNumberOfLines()) +
+      " line cells ignored: only surfaces are remeshed");
   }
   auto add = [&](vtkIdType a, vtkIdType b, vtkIdType c) {
     mesh.triangles.push_back({ static_cast<int>(a), static_cast<int>(b), static_cast<int>(c) });
@@ -51,8 +52,9 @@ void vtkCatadioptricMeshConversion::ToTriangleMesh(
   }
   if (nPolygons > 0)
   {
-    warnings.push_back(std::to_string(nPolygons) + " polygons with more than 3 points split "
-                                                   "into triangles");
+    warnings.push_back(std::to_string(nPolygons) +
+      " polygons with more than 3 points split "
+      "into triangles");
   }
   auto strips = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
   for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())

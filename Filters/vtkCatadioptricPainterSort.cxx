@@ -51,25 +51,38 @@ struct KeyedCell
   vtkIdType cell;
 };
 
-// Stable LSD radix sort by key (11-bit digits; passes whose digit is the same for every key are
-// skipped, as the high bits of depths within one scene mostly are). Key and index move together,
-// so each pass reads its input in order. Stability keeps equal depths in input order.
-void RadixSort(std::vector<KeyedCell>& cells)
+// The depth a key was made from (-0 comes back as +0).
+inline double DepthOfKey(std::uint64_t key)
 {
-  constexpr int kBits = 11;
-  constexpr int kPasses = (64 + kBits - 1) / kBits;
-  constexpr std::size_t kBuckets = std::size_t(1) << kBits;
+  const std::uint64_t ascending = ~key;
+  const std::uint64_t bits =
+    (ascending >> 63) ? (ascending & ~(std::uint64_t(1) << 63)) : ~ascending;
+  double depth;
+  std::memcpy(&depth, &bits, sizeof depth);
+  return depth;
+}
+
+// Stable sort by key. An LSD radix sort on the keys' high 32 bits (three digits of 11, 11 and 10
+// bits; a digit that is the same for every key, as the sign and exponent of depths within one
+// scene mostly are, costs no pass), then the runs whose high bits tie (depths within a millionth
+// of each other) sorted by the whole key. Key and index move together, so each pass reads its
+// input in order. Stability keeps equal depths in input order.
+void SortByKey(std::vector<KeyedCell>& cells)
+{
+  constexpr int kShift[3] = { 32, 43, 54 };
+  constexpr int kWidth[3] = { 11, 11, 10 };
+  constexpr std::size_t kBuckets = std::size_t(1) << 11;
   const std::size_t n = cells.size();
-  std::vector<std::uint32_t> counts(kPasses * kBuckets, 0);
+  std::vector<std::uint32_t> counts(3 * kBuckets, 0);
   for (const KeyedCell& c : cells)
   {
-    for (int p = 0; p < kPasses; ++p)
+    for (int p = 0; p < 3; ++p)
     {
-      ++counts[p * kBuckets + ((c.key >> (p * kBits)) & (kBuckets - 1))];
+      ++counts[p * kBuckets + ((c.key >> kShift[p]) & ((std::uint64_t(1) << kWidth[p]) - 1))];
     }
   }
   std::vector<KeyedCell> scratch(n);
-  for (int p = 0; p < kPasses; ++p)
+  for (int p = 0; p < 3; ++p)
   {
     std::uint32_t* count = counts.data() + p * kBuckets;
     if (std::any_of(count, count + kBuckets, [n](std::uint32_t c) { return c == n; }))
@@ -83,11 +96,42 @@ void RadixSort(std::vector<KeyedCell>& cells)
       count[b] = sum;
       sum += c;
     }
+    const int shift = kShift[p];
+    const std::uint64_t mask = (std::uint64_t(1) << kWidth[p]) - 1;
     for (const KeyedCell& c : cells)
     {
-      scratch[count[(c.key >> (p * kBits)) & (kBuckets - 1)]++] = c;
+      scratch[count[(c.key >> shift) & mask]++] = c;
     }
     cells.swap(scratch);
+  }
+  // Runs with the same high half: by the whole key, stably (few and short in real scenes).
+  auto byKey = [](const KeyedCell& a, const KeyedCell& b) { return a.key < b.key; };
+  for (std::size_t b = 0; b < n;)
+  {
+    const std::uint64_t high = cells[b].key >> 32;
+    std::size_t e = b + 1;
+    while (e < n && (cells[e].key >> 32) == high)
+    {
+      ++e;
+    }
+    if (e - b > 16)
+    {
+      std::stable_sort(cells.begin() + b, cells.begin() + e, byKey);
+    }
+    else
+    {
+      for (std::size_t i = b + 1; i < e; ++i) // insertion sort: stable
+      {
+        const KeyedCell c = cells[i];
+        std::size_t j = i;
+        for (; j > b && c.key < cells[j - 1].key; --j)
+        {
+          cells[j] = cells[j - 1];
+        }
+        cells[j] = c;
+      }
+    }
+    b = e;
   }
 }
 
@@ -225,10 +269,10 @@ vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnecti
 }
 
 // Output cell arrays like the input's (name, components, attributes), sized for n tuples. Arrays
-// with the standard memory layout are listed in `tuples` for GatherCells; the others are filled
-// here, tuple by tuple.
-std::vector<TupleGather> PrepareCellData(
-  vtkCellData* in, vtkCellData* out, const std::vector<vtkIdType>& order, vtkIdType first)
+// with the standard memory layout are listed in `tuples` for GatherCells, but `skip` (left for
+// the caller to fill); the others are filled here, tuple by tuple.
+std::vector<TupleGather> PrepareCellData(vtkCellData* in, vtkCellData* out,
+  const std::vector<vtkIdType>& order, vtkIdType first, vtkAbstractArray* skip)
 {
   std::vector<TupleGather> tuples;
   const vtkIdType n = static_cast<vtkIdType>(order.size());
@@ -240,7 +284,10 @@ std::vector<TupleGather> PrepareCellData(
     dst->SetNumberOfComponents(src->GetNumberOfComponents());
     dst->CopyComponentNames(src);
     dst->SetNumberOfTuples(n);
-    if (src->HasStandardMemoryLayout() && dst->HasStandardMemoryLayout())
+    if (src == skip)
+    {
+    }
+    else if (src->HasStandardMemoryLayout() && dst->HasStandardMemoryLayout())
     {
       tuples.push_back({ static_cast<const unsigned char*>(src->GetVoidPointer(0)),
         static_cast<unsigned char*>(dst->GetVoidPointer(0)),
@@ -315,7 +362,7 @@ int vtkCatadioptricPainterSort::RequestData(
   }
   this->UpdateProgress(0.2);
   // Far to near; equal depths keep input order (a stable sort of cells in input order).
-  RadixSort(cells);
+  SortByKey(cells);
   std::vector<vtkIdType> order(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i)
   {
@@ -329,8 +376,20 @@ int vtkCatadioptricPainterSort::RequestData(
     inPolys->GetNumberOfConnectivityIds() <= VTK_TYPE_INT32_MAX;
   const bool triangles = inPolys->IsHomogeneous() == 3;
   vtkCellData* outCD = output->GetCellData();
+  // The depths come back from the sorted keys, in order, instead of from random places.
   const std::vector<TupleGather> tuples =
-    PrepareCellData(input->GetCellData(), outCD, order, first);
+    PrepareCellData(input->GetCellData(), outCD, order, first, depthDoubles);
+  if (depthDoubles)
+  {
+    double* depths = vtkDoubleArray::SafeDownCast(outCD->GetArray("CentroidDepth"))->GetPointer(0);
+    vtkCatadioptricParallel::For(
+      0, static_cast<vtkIdType>(cells.size()), kCopyGrain, [&](vtkIdType b, vtkIdType e) {
+        for (vtkIdType i = b; i < e; ++i)
+        {
+          depths[i] = DepthOfKey(cells[i].key);
+        }
+      });
+  }
   vtkSmartPointer<vtkCellArray> polys = inPolys->IsStorage64Bit()
     ? Gathered(inPolys->GetOffsetsArray64(), inPolys->GetConnectivityArray64(), order, first,
         triangles, tuples, ids32)

@@ -170,7 +170,7 @@ struct CellWorker
 
   void Finish(Batch& batch) const
   {
-    this->Projector->ProjectWorldNear(batch.n, batch.centroid, batch.guess, batch.q);
+    this->Projector->ProjectWorldNear(batch.n, batch.centroid, batch.guess, batch.q, false);
     for (int k = 0; k < batch.n; ++k)
     {
       const catar::ProjectedPoint& q = batch.q[k];
@@ -340,21 +340,30 @@ int vtkCatadioptricProjection::RequestData(
   vtkNew<vtkDoubleArray> depth;
   depth->SetName("CentroidDepth");
   depth->SetNumberOfTuples(nCells);
-  depth->FillValue(0.0);
   vtkNew<vtkDoubleArray> centroidMirror;
   centroidMirror->SetName("CentroidMirrorPoint");
   centroidMirror->SetNumberOfComponents(3);
   centroidMirror->SetNumberOfTuples(nCells);
-  centroidMirror->FillValue(0.0);
   vtkNew<vtkUnsignedCharArray> cvis;
   cvis->SetName("Visible");
   cvis->SetNumberOfTuples(nCells);
-  cvis->FillValue(0);
+  // Zeros for vertices, lines and strips; the polygons' values are all written below.
+  const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  const vtkIdType endPoly = firstPoly + input->GetNumberOfPolys();
+  const bool polysWritten = input->GetNumberOfPolys() > 0 && nPts > 0;
+  for (const auto& range : { std::make_pair(vtkIdType(0), polysWritten ? firstPoly : nCells),
+         std::make_pair(polysWritten ? endPoly : nCells, nCells) })
+  {
+    std::fill(depth->GetPointer(range.first), depth->GetPointer(range.second), 0.0);
+    std::fill(centroidMirror->GetPointer(3 * range.first),
+      centroidMirror->GetPointer(3 * range.second), 0.0);
+    std::fill(cvis->GetPointer(range.first), cvis->GetPointer(range.second), 0);
+  }
   if (input->GetNumberOfStrips() > 0)
   {
     vtkWarningMacro("Triangle strips are not drawn; run vtkTriangleFilter first.");
   }
-  if (input->GetNumberOfPolys() > 0 && nPts > 0)
+  if (polysWritten)
   {
     CellWorker worker;
     worker.Projector = &projector;
@@ -362,7 +371,7 @@ int vtkCatadioptricProjection::RequestData(
     worker.Depth = depth->GetPointer(0);
     worker.CentroidMirror = centroidMirror->GetPointer(0);
     worker.Visible = cvis->GetPointer(0);
-    worker.CellOffset = input->GetNumberOfVerts() + input->GetNumberOfLines();
+    worker.CellOffset = firstPoly;
     worker.Width = camera->GetImageWidth();
     worker.Height = camera->GetImageHeight();
     worker.CullBackFaces = this->BackFaceCulling;

@@ -163,7 +163,8 @@ int vtkCatadioptricRemesher::RequestData(
                                                   const catar::Vec3& a, const catar::Vec3& b) {
       return catar::EdgeBendPixels(*projector, a, b);
     };
-    catar::mesh::ScreenSpaceResult result = catar::mesh::RemeshToPixelTolerance(mesh, bend, options);
+    catar::mesh::ScreenSpaceResult result =
+      catar::mesh::RemeshToPixelTolerance(mesh, bend, options);
     ok = result.ok;
     error = result.error;
     warnings.insert(warnings.end(), result.warnings.begin(), result.warnings.end());

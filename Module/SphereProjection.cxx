@@ -626,8 +626,8 @@ ProjectedPoint SphereProjector::ProjectWorldNear(const Vec3& pWorld, const Vec3&
   return this->ProjectCameraFrom(this->R * pWorld + this->T, SolverType::Iterative, &mirrorGuess);
 }
 
-void SphereProjector::ProjectWorldNear(
-  std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess, ProjectedPoint* out) const
+void SphereProjector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess,
+  ProjectedPoint* out, bool pixels) const
 {
   constexpr int W = detail::MirrorFrame::kLanes;
   for (std::size_t first = 0; first < n; first += W)
@@ -656,7 +656,7 @@ void SphereProjector::ProjectWorldNear(
     for (int k = 0; k < count; ++k)
     {
       ProjectedPoint& o = out[first + lane[k]];
-      o = fast[k] ? this->Finish(p[k], r[k])
+      o = fast[k] ? this->Finish(p[k], r[k], pixels)
                   : this->ProjectCameraFrom(p[k], SolverType::Iterative, &guess[k]);
     }
   }
@@ -681,13 +681,20 @@ ProjectedPoint SphereProjector::ProjectCameraFrom(
   return this->Finish(p, r);
 }
 
-ProjectedPoint SphereProjector::Finish(const Vec3& p, const Vec3& r) const
+ProjectedPoint SphereProjector::Finish(const Vec3& p, const Vec3& r, bool pixel) const
 {
   ProjectedPoint out;
   // The camera images only mirror points in front of it.
   if (!(r.z() > 0.0 && r.z() * r.z() > 1e-24 * r.squaredNorm()))
   {
     out.status = ProjectionStatus::NoReflection;
+    return out;
+  }
+  if (!pixel)
+  {
+    out.mirrorPoint = r;
+    out.pathLength = (p - r).norm();
+    out.status = ProjectionStatus::Valid;
     return out;
   }
   const Vec2 px = this->Model.DirectionToPixel(r);

@@ -116,8 +116,11 @@ public:
   /// ProjectWorldNear for n points: out[i] = ProjectWorldNear(pWorld[i], mirrorGuess[i]), the same
   /// results, solved several points side by side (about twice as fast per point as one call
   /// each). A guess that is not finite starts that point from the iterative solver's own guess.
-  void ProjectWorldNear(
-    std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess, ProjectedPoint* out) const;
+  /// With pixels false the pixel may be left at zero and Valid may stand for OutsideImage (for
+  /// callers that need reflection points and path lengths only, e.g. the painter's depths of
+  /// centroids); mirror points, path lengths and HasProjection(status) are the same.
+  void ProjectWorldNear(std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess,
+    ProjectedPoint* out, bool pixels = true) const;
 
   /// Back projection of a pixel: the reflected ray in the camera frame / world frame.
   /// Pixels whose ray misses the mirror give NoReflection; pixels outside the image are still
@@ -128,7 +131,7 @@ public:
 private:
   ProjectedPoint ProjectCameraFrom(const Vec3& p, SolverType solver, const Vec3* mirrorGuess) const;
   // The camera-side end of a projection: r is p's reflection point (both camera frame).
-  ProjectedPoint Finish(const Vec3& p, const Vec3& r) const;
+  ProjectedPoint Finish(const Vec3& p, const Vec3& r, bool pixel = true) const;
 
   CameraModel Model;
   bool Valid = false;

@@ -279,6 +279,15 @@ TEST(SphereProjection, ManyPointsAtOnceGiveWhatOneAtATimeGives)
         ASSERT_EQ(out[i].pathLength, one.pathLength) << i;
         valid += HasProjection(one.status);
       }
+      // Without pixels: the same reflection points, path lengths and whether there is one.
+      proj.ProjectWorldNear(points.size(), points.data(), guesses.data(), out.data(), false);
+      for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        const ProjectedPoint one = proj.ProjectWorldNear(points[i], guesses[i]);
+        ASSERT_EQ(HasProjection(out[i].status), HasProjection(one.status)) << i;
+        ASSERT_EQ(out[i].mirrorPoint, one.mirrorPoint) << i;
+        ASSERT_EQ(out[i].pathLength, one.pathLength) << i;
+      }
     }
     EXPECT_GT(valid, 1000);
   }
