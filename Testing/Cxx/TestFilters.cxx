@@ -25,8 +25,12 @@
 #include <Eigen/Geometry> // cross products
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
+#include <random>
+#include <vector>
 
 namespace
 {
@@ -399,6 +403,102 @@ TEST(vtkCatadioptricPainterSort, FarToNearWithCellDataAligned)
   for (vtkIdType c = 0; c < sort->GetOutput()->GetNumberOfCells(); ++c)
   {
     EXPECT_EQ(outVis->GetComponent(c, 0), 1);
+  }
+}
+
+TEST(vtkCatadioptricPainterSort, OrderIsAStableSortByDepth)
+{
+  // Depths made to stress the sort: exact ties, depths that differ only in their last bits (the
+  // radix pass looks at the high half of the key only), long runs of such near ties, zero and
+  // -0, negative and huge values; triangles and quads mixed, and triangles only. The order must be
+  // exactly std::stable_sort's by decreasing depth, and cell data must follow.
+  std::mt19937_64 rng(17);
+  for (const bool quads : { false, true })
+  {
+    const vtkIdType n = 50000;
+    vtkNew<vtkPoints> points;
+    for (int i = 0; i < 8; ++i)
+    {
+      points->InsertNextPoint(i, i * i, 1);
+    }
+    vtkNew<vtkCellArray> polys;
+    vtkNew<vtkDoubleArray> depth;
+    depth->SetName("CentroidDepth");
+    vtkNew<vtkUnsignedCharArray> visible;
+    visible->SetName("Visible");
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<double> depths;
+    for (vtkIdType c = 0; c < n; ++c)
+    {
+      const vtkIdType tri[3] = { c % 8, (c + 1) % 8, (c + 3) % 8 };
+      const vtkIdType quad[4] = { c % 8, (c + 1) % 8, (c + 2) % 8, (c + 5) % 8 };
+      if (quads && c % 3 == 0)
+      {
+        polys->InsertNextCell(4, quad);
+      }
+      else
+      {
+        polys->InsertNextCell(3, tri);
+      }
+      double d = 0.5 + unit(rng);
+      switch (c % 10)
+      {
+        case 0:
+          d = 0.75;
+          break; // exact ties
+        case 1:
+          d = std::nextafter(0.75, 2.0) + 1e-13 * (c % 7);
+          break; // near ties
+        case 2:
+          d = 0.25 + 1e-12 * static_cast<double>(c % 1000);
+          break; // long runs
+        case 3:
+          d = (c % 20 == 3) ? 0.0 : -0.0;
+          break;
+        case 4:
+          d = -unit(rng);
+          break;
+        case 5:
+          d = 1e300 * unit(rng);
+          break;
+        default:
+          break;
+      }
+      depths.push_back(d);
+      depth->InsertNextValue(d);
+      visible->InsertNextValue(1);
+    }
+    vtkNew<vtkPolyData> mesh;
+    mesh->SetPoints(points);
+    mesh->SetPolys(polys);
+    mesh->GetCellData()->AddArray(depth);
+    mesh->GetCellData()->AddArray(visible);
+    vtkNew<vtkCatadioptricPainterSort> sort;
+    sort->SetInputData(mesh);
+    sort->Update();
+    vtkPolyData* out = sort->GetOutput();
+    ASSERT_EQ(out->GetNumberOfPolys(), n);
+
+    std::vector<vtkIdType> expected(n);
+    std::iota(expected.begin(), expected.end(), 0);
+    std::stable_sort(expected.begin(), expected.end(),
+      [&](vtkIdType a, vtkIdType b) { return depths[a] > depths[b]; });
+    vtkDataArray* original = out->GetCellData()->GetArray("OriginalCellId");
+    vtkDataArray* outDepth = out->GetCellData()->GetArray("CentroidDepth");
+    ASSERT_TRUE(original && outDepth);
+    vtkNew<vtkIdList> a, b;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      ASSERT_EQ(static_cast<vtkIdType>(original->GetComponent(i, 0)), expected[i]) << i;
+      ASSERT_EQ(outDepth->GetComponent(i, 0), depths[expected[i]]) << i;
+      out->GetCellPoints(i, a);
+      mesh->GetCellPoints(expected[i], b);
+      ASSERT_EQ(a->GetNumberOfIds(), b->GetNumberOfIds());
+      for (vtkIdType k = 0; k < a->GetNumberOfIds(); ++k)
+      {
+        ASSERT_EQ(a->GetId(k), b->GetId(k));
+      }
+    }
   }
 }
 
