@@ -11,6 +11,10 @@
 #include <thread>
 #include <vector>
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <unistd.h> // getpid
+#endif
+
 namespace
 {
 using RangeFunction = void (*)(void*, vtkIdType, vtkIdType);
@@ -180,6 +184,23 @@ private:
 Pool& ThePool()
 {
   static Pool pool;
+#if defined(__unix__) || defined(__APPLE__)
+  // A child of fork() has none of its parent's pool threads: it gets a pool of its own (the
+  // parent's copy is left alone; its threads do not exist in the child).
+  static const pid_t owner = getpid();
+  static Pool* child = nullptr;
+  static pid_t childPid = 0;
+  const pid_t pid = getpid();
+  if (pid != owner)
+  {
+    if (!child || childPid != pid)
+    {
+      child = new Pool; // never destroyed: a forked child may hold copies of several
+      childPid = pid;
+    }
+    return *child;
+  }
+#endif
   return pool;
 }
 } // namespace

@@ -12,6 +12,11 @@
 #include <thread>
 #include <vector>
 
+#if defined(__unix__)
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
+
 namespace
 {
 // Runs a loop over [begin, end) and checks that the ranges tile it exactly.
@@ -96,6 +101,32 @@ TEST(vtkCatadioptricParallel, LoopsInsideLoopsAndFromTwoThreads)
   EXPECT_EQ(a.load(), 100L * 49995000L);
   EXPECT_EQ(b.load(), 100L * 49995000L);
 }
+
+#if defined(__unix__)
+TEST(vtkCatadioptricParallel, WorksInAForkedChild)
+{
+  // The parent's pool threads do not exist in a child of fork(): the child must not wait for them.
+  vtkSMPTools::SetBackend("STDThread");
+  ExpectTiles(0, 100000, 16); // the parent's pool is running
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0)
+  {
+    std::atomic<long> sum{ 0 };
+    vtkCatadioptricParallel::For(0, 100000, 16, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        sum += i;
+      }
+    });
+    _exit(sum.load() == 4999950000L ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+#endif
 
 TEST(vtkCatadioptricParallel, FollowsTheSMPToolsSettings)
 {
