@@ -62,49 +62,52 @@ BENCHMARK(BM_ForwardProjection)->Arg(0)->Arg(1);
 // Projection started from a nearby reflection point (what vtkCatadioptricProjection does for the
 // cells' centroids and, with the iterative solver, for each vertex after the first): the guess
 // is the reflection point of a point `range(0)` tenths of a millimetre away.
-void BM_ForwardProjectionNear(benchmark::State& state)
+struct NearInput
+{
+  SphereProjector proj;
+  std::vector<Vec3> points;
+  std::vector<Vec3> guesses;
+};
+
+NearInput MakeNearInput(benchmark::State& state)
 {
   const double offset = 1e-4 * static_cast<double>(state.range(0));
   state.SetLabel("start " + std::to_string(offset * 1e3) + " mm away");
   const CameraModel model = DemoScene().camera;
-  const SphereProjector proj(model);
-  const std::vector<Vec3> pts = ScenePoints(model, 4096);
-  std::vector<Vec3> guesses;
-  for (const Vec3& p : pts)
+  NearInput in{ SphereProjector(model), ScenePoints(model, 4096), {} };
+  for (const Vec3& p : in.points)
   {
-    guesses.push_back(proj.ProjectWorld(p + Vec3(offset, -offset, offset)).mirrorPoint);
+    in.guesses.push_back(in.proj.ProjectWorld(p + Vec3(offset, -offset, offset)).mirrorPoint);
   }
+  return in;
+}
+
+// One point at a time.
+void BM_ForwardProjectionNear(benchmark::State& state)
+{
+  const NearInput in = MakeNearInput(state);
   for (auto _ : state)
   {
-    for (size_t i = 0; i < pts.size(); ++i)
+    for (size_t i = 0; i < in.points.size(); ++i)
     {
-      benchmark::DoNotOptimize(proj.ProjectWorldNear(pts[i], guesses[i]));
+      benchmark::DoNotOptimize(in.proj.ProjectWorldNear(in.points[i], in.guesses[i]));
     }
   }
-  SetPerItem(state, pts.size());
+  SetPerItem(state, in.points.size());
 }
 BENCHMARK(BM_ForwardProjectionNear)->Arg(10)->Arg(100);
 
 // The same points and guesses through the many-points call (points solved side by side).
 void BM_ForwardProjectionNearBatch(benchmark::State& state)
 {
-  const double offset = 1e-4 * static_cast<double>(state.range(0));
-  state.SetLabel("start " + std::to_string(offset * 1e3) + " mm away");
-  const CameraModel model = DemoScene().camera;
-  const SphereProjector proj(model);
-  const std::vector<Vec3> pts = ScenePoints(model, 4096);
-  std::vector<Vec3> guesses;
-  for (const Vec3& p : pts)
-  {
-    guesses.push_back(proj.ProjectWorld(p + Vec3(offset, -offset, offset)).mirrorPoint);
-  }
-  std::vector<ProjectedPoint> out(pts.size());
+  const NearInput in = MakeNearInput(state);
+  std::vector<ProjectedPoint> out(in.points.size());
   for (auto _ : state)
   {
-    proj.ProjectWorldNear(pts.size(), pts.data(), guesses.data(), out.data());
+    in.proj.ProjectWorldNear(in.points.size(), in.points.data(), in.guesses.data(), out.data());
     benchmark::DoNotOptimize(out.data());
   }
-  SetPerItem(state, pts.size());
+  SetPerItem(state, in.points.size());
 }
 BENCHMARK(BM_ForwardProjectionNearBatch)->Arg(10)->Arg(100);
 
