@@ -13,7 +13,6 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
-#include "vtkSphereSource.h"
 
 #include <benchmark/benchmark.h>
 
@@ -23,23 +22,6 @@ namespace
 {
 using catar_benchmark::DemoCamera;
 
-// The object, placed 25 cm behind the camera, about 15 cm across; name is set to its origin.
-vtkSmartPointer<vtkPolyData> Object(std::string& name)
-{
-  if (vtkSmartPointer<vtkPolyData> bunny = catar_benchmark::SharedBunny())
-  {
-    name = "bunny";
-    return bunny;
-  }
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(0.075);
-  sphere->SetThetaResolution(264);
-  sphere->SetPhiResolution(134);
-  sphere->Update();
-  name = "sphere";
-  return catar_benchmark::PlaceInView(sphere->GetOutput(), nullptr);
-}
-
 void BM_Lighting(benchmark::State& state)
 {
   vtkSMPTools::SetBackend("STDThread");
@@ -47,7 +29,7 @@ void BM_Lighting(benchmark::State& state)
   const int nLights = static_cast<int>(state.range(1));
   const bool shadows = state.range(2) != 0;
   std::string name;
-  vtkSmartPointer<vtkPolyData> mesh = Object(name);
+  vtkSmartPointer<vtkPolyData> mesh = catar_benchmark::BunnyOrSphere(name);
   vtkNew<vtkCatadioptricCamera> cam;
   DemoCamera(cam);
   vtkNew<vtkCatadioptricProjection> proj;
@@ -59,8 +41,8 @@ void BM_Lighting(benchmark::State& state)
   const double colors[3][3] = { { 1, 0.3, 0.3 }, { 0.3, 1, 0.3 }, { 0.3, 0.3, 1 } };
   for (int k = 0; k < nLights; ++k)
   {
-    lighting->AddSpotLight(0.2 * (k - 1), 0.0, 1.3, 0.0, -0.25, 0.9, 35, colors[k][0],
-      colors[k][1], colors[k][2]);
+    lighting->AddSpotLight(
+      0.2 * (k - 1), 0.0, 1.3, 0.0, -0.25, 0.9, 35, colors[k][0], colors[k][1], colors[k][2]);
   }
   lighting->SetShadingMode(mode);
   lighting->SetShadows(shadows);
@@ -77,8 +59,8 @@ void BM_Lighting(benchmark::State& state)
   state.counters["triangles"] = static_cast<double>(mesh->GetNumberOfPolys());
 }
 BENCHMARK(BM_Lighting)
-  ->ArgsProduct({ { vtkCatadioptricLighting::FLAT, vtkCatadioptricLighting::GOURAUD }, { 1, 3 },
-    { 0, 1 } })
+  ->ArgsProduct(
+    { { vtkCatadioptricLighting::FLAT, vtkCatadioptricLighting::GOURAUD }, { 1, 3 }, { 0, 1 } })
   ->Unit(benchmark::kMillisecond)
   ->UseRealTime();
 } // namespace

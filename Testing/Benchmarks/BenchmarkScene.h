@@ -7,6 +7,7 @@
 #include "vtkOBJReader.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
 #include "vtkTessellatedBoxSource.h"
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
@@ -86,6 +87,30 @@ inline vtkSmartPointer<vtkPolyData> SharedBunny()
   centre->Translate(0.017, -0.11, -0.0016); // bounding-box centre to the origin
   centre->RotateX(90);                      // y up -> z up
   return PlaceInView(reader->GetOutput(), centre);
+}
+
+/// A sphere of radius 7.5 cm (the bunny's size) with theta x phi resolution, placed in view.
+inline vtkSmartPointer<vtkPolyData> Sphere(int theta, int phi)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.075);
+  sphere->SetThetaResolution(theta);
+  sphere->SetPhiResolution(phi);
+  sphere->Update();
+  return PlaceInView(sphere->GetOutput(), nullptr);
+}
+
+/// The bunny, or without the shared data a sphere of 69,696 triangles in the same place; name
+/// is set to which.
+inline vtkSmartPointer<vtkPolyData> BunnyOrSphere(std::string& name)
+{
+  if (vtkSmartPointer<vtkPolyData> bunny = SharedBunny())
+  {
+    name = "bunny";
+    return bunny;
+  }
+  name = "sphere";
+  return Sphere(264, 134);
 }
 } // namespace catar_benchmark
 

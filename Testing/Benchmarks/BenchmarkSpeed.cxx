@@ -20,7 +20,6 @@
 #include "vtkCatadioptricRemesher.h"
 #include "vtkPLYReader.h"
 #include "vtkSMPTools.h"
-#include "vtkSphereSource.h"
 
 #include <cstdlib>
 #include <cstring>
@@ -29,16 +28,6 @@
 namespace
 {
 using namespace catar_benchmark;
-
-vtkSmartPointer<vtkPolyData> Sphere(int theta, int phi)
-{
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(0.075);
-  sphere->SetThetaResolution(theta);
-  sphere->SetPhiResolution(phi);
-  sphere->Update();
-  return PlaceInView(sphere->GetOutput(), nullptr);
-}
 
 // The paper's box remeshed to triangles of about `targetArea` square metres (0: as is).
 vtkSmartPointer<vtkPolyData> Box(double targetArea)
@@ -312,8 +301,7 @@ int main(int argc, char* argv[])
     r.stages.ms = { 0, 0, 0, r.frameMs };
     r.frames = tracerFrames;
     std::printf("| %s | %s | %lld | %d | | | | | %.2f | %.1f |\n", r.object.c_str(),
-      r.variant.c_str(), static_cast<long long>(r.triangles), r.frames, r.frameMs,
-      1e3 / r.frameMs);
+      r.variant.c_str(), static_cast<long long>(r.triangles), r.frames, r.frameMs, 1e3 / r.frameMs);
     results.push_back(r);
   }
 

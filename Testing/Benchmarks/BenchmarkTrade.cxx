@@ -46,7 +46,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
-#include "vtkSphereSource.h"
 #include "vtkTable.h"
 #include "vtkTextProperty.h"
 #include "vtkTypeInt64Array.h"
@@ -121,23 +120,6 @@ void Check(const std::string& stage, int errorsBefore, bool ok = true)
   {
     throw std::runtime_error(stage + " failed");
   }
-}
-
-// The object: the bunny, or a sphere of 69,696 triangles in the same place.
-vtkSmartPointer<vtkPolyData> Object(std::string& name)
-{
-  if (vtkSmartPointer<vtkPolyData> bunny = SharedBunny())
-  {
-    name = "bunny";
-    return bunny;
-  }
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetRadius(0.075);
-  sphere->SetThetaResolution(264);
-  sphere->SetPhiResolution(134);
-  sphere->Update();
-  name = "sphere";
-  return PlaceInView(sphere->GetOutput(), nullptr);
 }
 
 /// One rendering kept for comparison: RGBA colours and visible-triangle ids, VTK row order.
@@ -612,7 +594,7 @@ int main(int argc, char* argv[])
     int errors = Output->Errors;
     vtkSmartPointer<vtkImageData> frame = CameraFrame(camera);
     std::string object;
-    vtkSmartPointer<vtkPolyData> mesh = Object(object);
+    vtkSmartPointer<vtkPolyData> mesh = BunnyOrSphere(object);
     Check("scene set-up", errors, mesh && mesh->GetNumberOfPolys() > 0);
     Run run{ camera, frame, mesh, frames, samples, {} };
 
