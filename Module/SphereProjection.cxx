@@ -396,6 +396,17 @@ MirrorFrame::MirrorFrame(const Vec3& centre, double radius)
 ProjectionStatus MirrorFrame::Reflect(
   const Vec3& point, SolverType solver, Vec3& mirrorPoint, const Vec3* guess) const
 {
+  if (guess)
+  {
+    // Started next to the answer: the plain Newton of ReflectNear, whose answer, when it settles,
+    // is the physical reflection; otherwise the cases and the safeguarded search below decide.
+    unsigned char settled = 0;
+    this->ReflectNear(1, &point, guess, &mirrorPoint, &settled);
+    if (settled)
+    {
+      return ProjectionStatus::Valid;
+    }
+  }
   mirrorPoint.setZero();
   if (!this->Valid || !point.allFinite())
   {
@@ -439,44 +450,6 @@ ProjectionStatus MirrorFrame::Reflect(
   }
   const ReflectionQuartic q(a, bx, by);
   double c = 0.0, s = 0.0;
-  if (guess)
-  {
-    // Started next to the answer: plain Newton, accepted when it converges within a few steps
-    // to a point that both the camera and B see (an > 0, bn > 0) with 0 <= t <= beta (bt >= 0).
-    // That arc is the bracket below, where the root is unique, so this is the physical
-    // reflection; otherwise the safeguarded search below decides.
-    const Vec3 d = *guess - this->Centre;
-    const double gc = d.dot(this->E1);
-    const double gs = d.dot(e2);
-    const double gn = std::sqrt(gc * gc + gs * gs);
-    if (gn > 0.0 && gc > -0.5 * gn && std::isfinite(gn))
-    {
-      double u = gs / (gn + gc); // tan(t/2) of the guess's angle
-      bool converged = false;
-      for (int it = 0; it < 4; ++it)
-      {
-        double dq = 0.0;
-        const double step = q(u, dq) / dq;
-        u -= step;
-        if (std::abs(step) <= 1e-9 * (1.0 + std::abs(u)))
-        {
-          converged = true;
-          break;
-        }
-      }
-      if (converged && u >= 0.0)
-      {
-        CircleAt(u, c, s);
-        const double bn = bx * c + by * s - 1.0;
-        const double bt = by * c - bx * s;
-        if (CameraSees(a, c, s) && bn > 0.0 && bt >= 0.0)
-        {
-          mirrorPoint = this->Centre + this->Radius * (c * this->E1 + s * e2);
-          return ProjectionStatus::Valid;
-        }
-      }
-    }
-  }
   // The bracket [lo, hi] = [max(beta - alpha_B, 0), min(alpha_A, beta)] with beta the angle of B
   // and alpha_B = acos(1 / b), in u = tan(t / 2): cosines and sines instead of angles. The point
   // is hidden by the mirror when beta - alpha_B >= alpha_A (no arc seen by both).
@@ -523,8 +496,11 @@ ProjectionStatus MirrorFrame::Reflect(
 void MirrorFrame::ReflectNear(
   int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints, unsigned char* settled) const
 {
-  // The guess branch of Reflect, operation for operation, each stage for every lane before the
-  // next stage: the lanes' divisions and square roots overlap instead of waiting on each other.
+  // Plain Newton from the guess, accepted when it converges within a few steps to a point that
+  // both the camera and B see (an > 0, bn > 0) with 0 <= t <= beta (bt >= 0): that arc is
+  // Reflect's bracket, where the root is unique, so this is the physical reflection. Each stage
+  // runs for every lane before the next stage: the lanes' divisions and square roots overlap
+  // instead of waiting on each other.
   constexpr int W = kLanes;
   n = std::min(n, W);
   double bx[W], by[W], u[W], q[W][5];

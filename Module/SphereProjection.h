@@ -74,11 +74,12 @@ public:
 
   /// Points solved side by side in ReflectNear.
   static constexpr int kLanes = 8;
-  /// Reflect(points[i], Iterative, mirrorPoints[i], &guesses[i]) for n <= kLanes points side by
-  /// side (each step of the plain Newton from the guess is taken for all of them before the next,
-  /// so that their arithmetic overlaps): settled[i] = 1 where that Newton settles on the arc both
-  /// ends see, with the same mirror point as Reflect; 0 elsewhere (there Reflect decides: the
-  /// point touches or is inside the mirror, the guess is far, the point is on the axis, ...).
+  /// The start of Reflect(points[i], Iterative, mirrorPoints[i], &guesses[i]) for n <= kLanes
+  /// points side by side (each step of the plain Newton from the guess is taken for all of them
+  /// before the next, so that their arithmetic overlaps): settled[i] = 1 where that Newton settles
+  /// on the arc both ends see (mirrorPoints[i] is then Reflect's answer); 0 elsewhere, where
+  /// Reflect goes on (the point touches or is inside the mirror, the guess is far, the point is on
+  /// the axis, ...).
   void ReflectNear(int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints,
     unsigned char* settled) const;
 
