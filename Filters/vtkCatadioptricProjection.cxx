@@ -271,7 +271,7 @@ int vtkCatadioptricProjection::RequestData(
     unsigned char* vi = pvis->GetPointer(0);
     const bool coherent = solver == catar::SolverType::Iterative;
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
-      auto store = [&](vtkIdType i, const catar::ProjectedPoint& q) {
+      auto store = [&](vtkIdType i, const catar::Vec3& p, const catar::ProjectedPoint& q) {
         px[2 * i] = q.pixel.x();
         px[2 * i + 1] = q.pixel.y();
         mp[3 * i] = q.mirrorPoint.x();
@@ -281,7 +281,6 @@ int vtkCatadioptricProjection::RequestData(
         st[i] = static_cast<unsigned char>(q.status);
         vi[i] = catar::HasProjection(q.status) ? 1 : 0;
         VertexRecord& r = records[i];
-        const catar::Vec3 p = points(i);
         std::copy(p.data(), p.data() + 3, r.point);
         std::copy(q.pixel.data(), q.pixel.data() + 2, r.pixel);
         for (int k = 0; k < 3; ++k)
@@ -301,12 +300,13 @@ int vtkCatadioptricProjection::RequestData(
       bool havePrevious = false;
       for (vtkIdType i = begin; i < serialEnd; ++i)
       {
+        const catar::Vec3 p = points(i);
         const catar::ProjectedPoint q = coherent && havePrevious
-          ? projector.ProjectWorldNear(points(i), previous)
-          : projector.ProjectWorld(points(i), solver);
+          ? projector.ProjectWorldNear(p, previous)
+          : projector.ProjectWorld(p, solver);
         havePrevious = catar::HasProjection(q.status);
         previous = q.mirrorPoint;
-        store(i, q);
+        store(i, p, q);
       }
       const catar::Vec3 none = catar::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
       catar::Vec3 p[W], guess[W];
@@ -323,7 +323,7 @@ int vtkCatadioptricProjection::RequestData(
         projector.ProjectWorldNear(static_cast<std::size_t>(n), p, guess, q);
         for (vtkIdType l = 0; l < n; ++l)
         {
-          store(first + l, q[l]);
+          store(first + l, p[l], q[l]);
         }
       }
     });
