@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <type_traits>
 #include <vector>
 
@@ -269,10 +270,11 @@ vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnecti
 }
 
 // Output cell arrays like the input's (name, components, attributes), sized for n tuples. Arrays
-// with the standard memory layout are listed in `tuples` for GatherCells, but `skip` (left for
-// the caller to fill); the others are filled here, tuple by tuple.
+// with the standard memory layout are listed in `tuples` for GatherCells, but those in `skip`
+// (left for the caller to fill); the others are filled here, tuple by tuple.
 std::vector<TupleGather> PrepareCellData(vtkCellData* in, vtkCellData* out,
-  const std::vector<vtkIdType>& order, vtkIdType first, vtkAbstractArray* skip)
+  const std::vector<vtkIdType>& order, vtkIdType first,
+  std::initializer_list<const vtkAbstractArray*> skip)
 {
   std::vector<TupleGather> tuples;
   const vtkIdType n = static_cast<vtkIdType>(order.size());
@@ -284,7 +286,7 @@ std::vector<TupleGather> PrepareCellData(vtkCellData* in, vtkCellData* out,
     dst->SetNumberOfComponents(src->GetNumberOfComponents());
     dst->CopyComponentNames(src);
     dst->SetNumberOfTuples(n);
-    if (src == skip)
+    if (std::find(skip.begin(), skip.end(), src) != skip.end())
     {
     }
     else if (src->HasStandardMemoryLayout() && dst->HasStandardMemoryLayout())
@@ -351,8 +353,12 @@ int vtkCatadioptricPainterSort::RequestData(
   auto* depthDoubles = vtkDoubleArray::SafeDownCast(depthArray);
   std::vector<KeyedCell> cells;
   cells.reserve(nPolys);
+  // Whether every kept cell's Visible is 1 (as vtkCatadioptricProjection writes it): then the
+  // output's Visible is all ones, written in order instead of gathered from random places.
+  bool keptVisibleOnes = this->DropInvisibleCells && vis;
   for (vtkIdType c = 0; c < nPolys; ++c)
   {
+    keptVisibleOnes = keptVisibleOnes && vis[c] <= 1;
     if (!this->DropInvisibleCells || vis[c])
     {
       cells.push_back({ FarToNearKey(depthDoubles ? depthDoubles->GetValue(first + c)
@@ -377,8 +383,14 @@ int vtkCatadioptricPainterSort::RequestData(
   const bool triangles = inPolys->IsHomogeneous() == 3;
   vtkCellData* outCD = output->GetCellData();
   // The depths come back from the sorted keys, in order, instead of from random places.
+  vtkUnsignedCharArray* visibleOnes = keptVisibleOnes ? visible : nullptr;
   const std::vector<TupleGather> tuples =
-    PrepareCellData(input->GetCellData(), outCD, order, first, depthDoubles);
+    PrepareCellData(input->GetCellData(), outCD, order, first, { depthDoubles, visibleOnes });
+  if (visibleOnes)
+  {
+    auto* out = vtkUnsignedCharArray::SafeDownCast(outCD->GetAbstractArray(visible->GetName()));
+    std::fill(out->GetPointer(0), out->GetPointer(0) + out->GetNumberOfValues(), 1);
+  }
   if (depthDoubles)
   {
     double* depths = vtkDoubleArray::SafeDownCast(outCD->GetArray("CentroidDepth"))->GetPointer(0);

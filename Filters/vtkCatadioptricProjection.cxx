@@ -61,8 +61,9 @@ struct CellWorker
   catar::Mat3 CameraToWorldRotation; // R^T
   catar::Vec3 CameraCentre;          // -R^T T: the camera centre in world coordinates
 
-  template<typename CellStateT>
-  void operator()(CellStateT& state, vtkIdType begin, vtkIdType end) const
+  // Polygon c has the points conn[off[c]], ..., conn[off[c + 1] - 1].
+  template<typename IdT>
+  void operator()(const IdT* off, const IdT* conn, vtkIdType begin, vtkIdType end) const
   {
     Batch batch;
     for (vtkIdType c = begin; c < end; ++c)
@@ -70,17 +71,17 @@ struct CellWorker
       if (c + kPrefetchCells < end)
       {
         // The vertices of a cell a few ahead: their cache misses overlap this cell's work.
-        for (const auto id : state.GetCellRange(c + kPrefetchCells))
+        for (IdT k = off[c + kPrefetchCells]; k < off[c + kPrefetchCells + 1]; ++k)
         {
-          vtkCatadioptricParallel::Prefetch(this->Vertices + id);
+          vtkCatadioptricParallel::Prefetch(this->Vertices + conn[k]);
         }
       }
-      const auto ids = state.GetCellRange(c);
+      const IdT* ids = conn + off[c];
+      const vtkIdType n = static_cast<vtkIdType>(off[c + 1] - off[c]);
       const vtkIdType out = this->CellOffset + c;
       this->Depth[out] = 0.0;
       this->Visible[out] = 0;
       std::fill(this->CentroidMirror + 3 * out, this->CentroidMirror + 3 * out + 3, 0.0);
-      const vtkIdType n = static_cast<vtkIdType>(ids.size());
       if (n < 3)
       {
         continue;
@@ -92,9 +93,9 @@ struct CellWorker
       catar::Vec3 last(lp[0], lp[1], lp[2]);
       bool all = true;
       double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-      for (const auto id : ids)
+      for (vtkIdType k = 0; k < n; ++k)
       {
-        const VertexRecord& v = this->Vertices[id];
+        const VertexRecord& v = this->Vertices[ids[k]];
         if (!v.visible)
         {
           all = false;
@@ -201,8 +202,10 @@ struct CellDispatch
   template<typename CellStateT>
   void operator()(CellStateT& state, const CellWorker& worker) const
   {
+    const auto* off = state.GetOffsets()->GetPointer(0);
+    const auto* conn = state.GetConnectivity()->GetPointer(0);
     vtkCatadioptricParallel::For(0, state.GetNumberOfCells(), kPointGrain,
-      [&](vtkIdType b, vtkIdType e) { worker(state, b, e); });
+      [&](vtkIdType b, vtkIdType e) { worker(off, conn, b, e); });
   }
 };
 } // namespace
