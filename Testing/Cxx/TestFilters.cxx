@@ -404,6 +404,28 @@ TEST(vtkCatadioptricPainterSort, FarToNearWithCellDataAligned)
   {
     EXPECT_EQ(outVis->GetComponent(c, 0), 1);
   }
+
+  // Visible values other than 0 and 1 (any nonzero value is visible) come through unchanged,
+  // each with its cell.
+  for (vtkIdType c = 1; c < copy->GetNumberOfCells(); c += 4)
+  {
+    vis->SetValue(c, static_cast<unsigned char>(2 + c % 7));
+  }
+  copy->Modified();
+  sort->Update();
+  vtkPolyData* sorted = sort->GetOutput();
+  EXPECT_EQ(sorted->GetNumberOfCells(), copy->GetNumberOfCells() / 2);
+  outVis = sorted->GetCellData()->GetArray("Visible");
+  vtkDataArray* outIds = sorted->GetCellData()->GetArray("OriginalCellId");
+  ASSERT_TRUE(outVis && outIds);
+  int notOne = 0;
+  for (vtkIdType c = 0; c < sorted->GetNumberOfCells(); ++c)
+  {
+    const vtkIdType orig = static_cast<vtkIdType>(outIds->GetComponent(c, 0));
+    EXPECT_EQ(outVis->GetComponent(c, 0), vis->GetValue(orig)) << c;
+    notOne += outVis->GetComponent(c, 0) != 1 ? 1 : 0;
+  }
+  EXPECT_GT(notOne, 0);
 }
 
 TEST(vtkCatadioptricPainterSort, OrderIsAStableSortByDepth)
