@@ -222,6 +222,7 @@ void vtkCatadioptricParallel::Run(
   {
     return;
   }
+  const bool single = grain == 0; // one index per range
   grain = std::max<vtkIdType>(grain, 1);
   const int threads = n > grain ? GetNumberOfThreads() : 1;
   Pool& pool = ThePool();
@@ -233,7 +234,7 @@ void vtkCatadioptricParallel::Run(
   }
   pool.Resize(threads - 1);
   // Ranges of at least `grain`, about four per thread so that uneven ones even out.
-  const vtkIdType chunk = std::max(grain, (n + 4 * threads - 1) / (4 * threads));
+  const vtkIdType chunk = single ? 1 : std::max(grain, (n + 4 * threads - 1) / (4 * threads));
   pool.Loop(begin, end, chunk, call, functor);
   pool.Busy.store(false);
 }

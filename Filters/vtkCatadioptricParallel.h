@@ -36,6 +36,24 @@ public:
       const_cast<void*>(static_cast<const void*>(&f)));
   }
 
+  /// Calls f(i) for every i in [begin, end), the threads taking one index at a time as they
+  /// become free: for a few tasks of uneven cost, listed from the costliest down (a range per
+  /// thread, as For makes them, could give one thread all the costly ones).
+  template<typename Functor>
+  static void ForEachIndex(vtkIdType begin, vtkIdType end, Functor&& f)
+  {
+    using F = typename std::remove_reference<Functor>::type;
+    Run(
+      begin, end, 0,
+      [](void* fn, vtkIdType b, vtkIdType e) {
+        for (vtkIdType i = b; i < e; ++i)
+        {
+          (*static_cast<F*>(fn))(i);
+        }
+      },
+      const_cast<void*>(static_cast<const void*>(&f)));
+  }
+
   /// The number of threads a loop uses (the caller's included).
   static int GetNumberOfThreads();
 
@@ -52,6 +70,7 @@ public:
 
 private:
   using RangeFunction = void (*)(void*, vtkIdType, vtkIdType);
+  // grain 0: ranges of one index.
   static void Run(
     vtkIdType begin, vtkIdType end, vtkIdType grain, RangeFunction call, void* functor);
 };

@@ -79,32 +79,30 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
     idView.height = height;
     idView.rowStride = -w;
   }
-  vtkCatadioptricParallel::For(0, bins.GetNumberOfBands(), 1, [&](vtkIdType i0, vtkIdType i1) {
-    for (vtkIdType i = i0; i < i1; ++i)
+  // One band per task, heaviest first: the object often covers only a few bands.
+  vtkCatadioptricParallel::ForEachIndex(0, bins.GetNumberOfBands(), [&](vtkIdType i) {
+    const int b = bins.GetBandByLoad(static_cast<int>(i));
+    const catar::PixelRect band = bins.GetBand(b);
+    background(w * (height - band.y1), w * (height - band.y0)); // rows y1 - 1 ... y0
+    for (int y = band.y0; y < band.y1; ++y)
     {
-      const int b = bins.GetBandByLoad(static_cast<int>(i));
-      const catar::PixelRect band = bins.GetBand(b);
-      background(w * (height - band.y1), w * (height - band.y0)); // rows y1 - 1 ... y0
-      for (int y = band.y0; y < band.y1; ++y)
+      if (depth)
       {
-        if (depth)
-        {
-          std::fill(write.at(0, y), write.at(0, y) + width, std::numeric_limits<float>::infinity());
-        }
-        if (ids)
-        {
-          std::fill(idView.at(0, y), idView.at(0, y) + width, catar::RasterId(-1));
-        }
+        std::fill(write.at(0, y), write.at(0, y) + width, std::numeric_limits<float>::infinity());
       }
-      catar::SnappedTriangle t;
-      vtkCatadioptricTriangleBins::Info info;
-      bins.ForEachTriangle(b, [&](std::uint32_t ref) {
-        bins.Get(ref, t, info);
-        catar::rasterizeSnappedTriangle(view, t, band,
-          depth ? (info.Opaque ? &write : &test) : nullptr,
-          info.Texture >= 0 ? &textures[info.Texture] : nullptr, ids ? &idView : nullptr, info.Id);
-      });
+      if (ids)
+      {
+        std::fill(idView.at(0, y), idView.at(0, y) + width, catar::RasterId(-1));
+      }
     }
+    catar::SnappedTriangle t;
+    vtkCatadioptricTriangleBins::Info info;
+    bins.ForEachTriangle(b, [&](std::uint32_t ref) {
+      bins.Get(ref, t, info);
+      catar::rasterizeSnappedTriangle(view, t, band,
+        depth ? (info.Opaque ? &write : &test) : nullptr,
+        info.Texture >= 0 ? &textures[info.Texture] : nullptr, ids ? &idView : nullptr, info.Id);
+    });
   });
 }
 } // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <string>
@@ -64,6 +65,42 @@ TEST(vtkCatadioptricParallel, VisitsEveryIndexOnce)
   {
     ExpectTiles(0, 4096, 64); // many loops in a row: the pool's threads wake each time
   }
+}
+
+TEST(vtkCatadioptricParallel, ForEachIndexHandsOutOneIndexAtATime)
+{
+  vtkSMPTools::SetBackend("STDThread");
+  // Every index once.
+  std::vector<std::atomic<int>> visits(1000);
+  vtkCatadioptricParallel::ForEachIndex(0, 1000, [&](vtkIdType i) { visits[i].fetch_add(1); });
+  for (std::size_t i = 0; i < visits.size(); ++i)
+  {
+    ASSERT_EQ(visits[i].load(), 1) << i;
+  }
+  if (vtkCatadioptricParallel::GetNumberOfThreads() < 2)
+  {
+    GTEST_SKIP() << "one thread: nothing to hand out";
+  }
+  // The first (costliest) task keeps its thread until all the others are done: they can only
+  // finish if the other threads take them, which they cannot when a thread owns a range of
+  // indices (as For's ranges of n / (4 threads) would give it here).
+  const vtkIdType n = 33;
+  std::atomic<int> done{ 0 };
+  std::atomic<bool> othersFinished{ false };
+  vtkCatadioptricParallel::ForEachIndex(0, n, [&](vtkIdType i) {
+    if (i == 0)
+    {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (done.load() < n - 1 && std::chrono::steady_clock::now() < until)
+      {
+        std::this_thread::yield();
+      }
+      othersFinished = done.load() == n - 1;
+    }
+    done.fetch_add(1);
+  });
+  EXPECT_TRUE(othersFinished.load());
+  EXPECT_EQ(done.load(), n);
 }
 
 TEST(vtkCatadioptricParallel, LoopsInsideLoopsAndFromTwoThreads)
