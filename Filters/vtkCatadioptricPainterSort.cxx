@@ -169,15 +169,22 @@ inline void CopyTuple(const TupleGather& t, vtkIdType to, vtkIdType from)
   }
 }
 
+// What the gather writes besides polygons and tuples, in the sorted order (null: not wanted).
+struct SortedExtras
+{
+  double* Depths = nullptr;         // the depth each key was made from
+  vtkIdType* OriginalIds = nullptr; // first + the cell's polygon index
+};
+
 // The polygons in `order` (cell c is polygon c of the input, cell data index first + c) and the
 // tuples of the standard-layout cell arrays, in one parallel pass. The reads go through the order,
 // so they are random: each task asks for the cells a few ahead. Connectivity is written in 32-bit
 // storage (OutT) when the ids fit: half the bytes to write here and to read in the compositor.
 // `triangles`: every input polygon has three points (offsets 3c, no offsets to read).
 template<typename InT, typename OutT>
-void GatherCells(const InT* off, const InT* conn, const std::vector<vtkIdType>& order,
-  vtkIdType first, bool triangles, const std::vector<TupleGather>& tuples, OutT* outOff,
-  OutT* outConn)
+void GatherCells(const InT* off, const InT* conn, const std::vector<KeyedCell>& order,
+  vtkIdType first, bool triangles, const std::vector<TupleGather>& tuples,
+  const SortedExtras& extras, OutT* outOff, OutT* outConn)
 {
   const vtkIdType n = static_cast<vtkIdType>(order.size());
   if (!triangles)
@@ -185,7 +192,7 @@ void GatherCells(const InT* off, const InT* conn, const std::vector<vtkIdType>& 
     outOff[0] = 0;
     for (vtkIdType i = 0; i < n; ++i)
     {
-      const vtkIdType c = order[i];
+      const vtkIdType c = order[i].cell;
       outOff[i + 1] = outOff[i] + static_cast<OutT>(off[c + 1] - off[c]);
     }
   }
@@ -194,14 +201,22 @@ void GatherCells(const InT* off, const InT* conn, const std::vector<vtkIdType>& 
     {
       if (i + kPrefetchCells < e)
       {
-        const vtkIdType ahead = order[i + kPrefetchCells];
+        const vtkIdType ahead = order[i + kPrefetchCells].cell;
         vtkCatadioptricParallel::Prefetch(conn + (triangles ? 3 * ahead : off[ahead]));
         for (const TupleGather& t : tuples)
         {
           vtkCatadioptricParallel::Prefetch(t.from + (first + ahead) * t.width);
         }
       }
-      const vtkIdType c = order[i];
+      const vtkIdType c = order[i].cell;
+      if (extras.Depths)
+      {
+        extras.Depths[i] = DepthOfKey(order[i].key);
+      }
+      if (extras.OriginalIds)
+      {
+        extras.OriginalIds[i] = first + c;
+      }
       if (triangles)
       {
         outOff[i] = static_cast<OutT>(3 * i);
@@ -230,8 +245,8 @@ void GatherCells(const InT* off, const InT* conn, const std::vector<vtkIdType>& 
 
 template<typename OutArrayT, typename InArrayT>
 vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnectivity,
-  const std::vector<vtkIdType>& order, vtkIdType first, bool triangles,
-  const std::vector<TupleGather>& tuples)
+  const std::vector<KeyedCell>& order, vtkIdType first, bool triangles,
+  const std::vector<TupleGather>& tuples, const SortedExtras& extras)
 {
   const auto* off = inOffsets->GetPointer(0);
   vtkIdType total = 0;
@@ -241,16 +256,16 @@ vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnecti
   }
   else
   {
-    for (const vtkIdType c : order)
+    for (const KeyedCell& k : order)
     {
-      total += static_cast<vtkIdType>(off[c + 1] - off[c]);
+      total += static_cast<vtkIdType>(off[k.cell + 1] - off[k.cell]);
     }
   }
   vtkNew<OutArrayT> offsets;
   offsets->SetNumberOfValues(static_cast<vtkIdType>(order.size()) + 1);
   vtkNew<OutArrayT> connectivity;
   connectivity->SetNumberOfValues(total);
-  GatherCells(off, inConnectivity->GetPointer(0), order, first, triangles, tuples,
+  GatherCells(off, inConnectivity->GetPointer(0), order, first, triangles, tuples, extras,
     offsets->GetPointer(0), connectivity->GetPointer(0));
   auto polys = vtkSmartPointer<vtkCellArray>::New();
   polys->SetData(offsets, connectivity);
@@ -259,21 +274,23 @@ vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnecti
 
 template<typename InArrayT>
 vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnectivity,
-  const std::vector<vtkIdType>& order, vtkIdType first, bool triangles,
-  const std::vector<TupleGather>& tuples, bool ids32)
+  const std::vector<KeyedCell>& order, vtkIdType first, bool triangles,
+  const std::vector<TupleGather>& tuples, const SortedExtras& extras, bool ids32)
 {
   if (ids32)
   {
-    return Gathered<vtkTypeInt32Array>(inOffsets, inConnectivity, order, first, triangles, tuples);
+    return Gathered<vtkTypeInt32Array>(
+      inOffsets, inConnectivity, order, first, triangles, tuples, extras);
   }
-  return Gathered<vtkTypeInt64Array>(inOffsets, inConnectivity, order, first, triangles, tuples);
+  return Gathered<vtkTypeInt64Array>(
+    inOffsets, inConnectivity, order, first, triangles, tuples, extras);
 }
 
 // Output cell arrays like the input's (name, components, attributes), sized for n tuples. Arrays
 // with the standard memory layout are listed in `tuples` for GatherCells, but those in `skip`
 // (left for the caller to fill); the others are filled here, tuple by tuple.
 std::vector<TupleGather> PrepareCellData(vtkCellData* in, vtkCellData* out,
-  const std::vector<vtkIdType>& order, vtkIdType first,
+  const std::vector<KeyedCell>& order, vtkIdType first,
   std::initializer_list<const vtkAbstractArray*> skip)
 {
   std::vector<TupleGather> tuples;
@@ -299,7 +316,7 @@ std::vector<TupleGather> PrepareCellData(vtkCellData* in, vtkCellData* out,
     {
       for (vtkIdType i = 0; i < n; ++i)
       {
-        dst->SetTuple(i, first + order[i], src);
+        dst->SetTuple(i, first + order[i].cell, src);
       }
     }
     out->AddArray(dst);
@@ -369,11 +386,6 @@ int vtkCatadioptricPainterSort::RequestData(
   this->UpdateProgress(0.2);
   // Far to near; equal depths keep input order (a stable sort of cells in input order).
   SortByKey(cells);
-  std::vector<vtkIdType> order(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i)
-  {
-    order[i] = cells[i].cell;
-  }
   this->UpdateProgress(0.6);
 
   // New polygon connectivity and cell data in the sorted order.
@@ -382,52 +394,41 @@ int vtkCatadioptricPainterSort::RequestData(
     inPolys->GetNumberOfConnectivityIds() <= VTK_TYPE_INT32_MAX;
   const bool triangles = inPolys->IsHomogeneous() == 3;
   vtkCellData* outCD = output->GetCellData();
-  // The depths come back from the sorted keys, in order, instead of from random places.
   vtkUnsignedCharArray* visibleOnes = keptVisibleOnes ? visible : nullptr;
   const std::vector<TupleGather> tuples =
-    PrepareCellData(input->GetCellData(), outCD, order, first, { depthDoubles, visibleOnes });
+    PrepareCellData(input->GetCellData(), outCD, cells, first, { depthDoubles, visibleOnes });
   if (visibleOnes)
   {
     auto* out = vtkUnsignedCharArray::SafeDownCast(outCD->GetAbstractArray(visible->GetName()));
     std::fill(out->GetPointer(0), out->GetPointer(0) + out->GetNumberOfValues(), 1);
   }
+  const vtkIdType nOut = static_cast<vtkIdType>(cells.size());
+  SortedExtras extras;
+  // The depths come back from the sorted keys, in order, instead of from random places.
   if (depthDoubles)
   {
-    double* depths = vtkDoubleArray::SafeDownCast(outCD->GetArray("CentroidDepth"))->GetPointer(0);
-    vtkCatadioptricParallel::For(
-      0, static_cast<vtkIdType>(cells.size()), kCopyGrain, [&](vtkIdType b, vtkIdType e) {
-        for (vtkIdType i = b; i < e; ++i)
-        {
-          depths[i] = DepthOfKey(cells[i].key);
-        }
-      });
+    extras.Depths = vtkDoubleArray::SafeDownCast(outCD->GetArray("CentroidDepth"))->GetPointer(0);
   }
-  vtkSmartPointer<vtkCellArray> polys = inPolys->IsStorage64Bit()
-    ? Gathered(inPolys->GetOffsetsArray64(), inPolys->GetConnectivityArray64(), order, first,
-        triangles, tuples, ids32)
-    : Gathered(inPolys->GetOffsetsArray32(), inPolys->GetConnectivityArray32(), order, first,
-        triangles, tuples, ids32);
-
-  output->SetPoints(input->GetPoints());
-  output->GetPointData()->PassData(input->GetPointData());
-  output->GetFieldData()->PassData(input->GetFieldData());
-  output->SetPolys(polys);
-
-  const vtkIdType nOut = static_cast<vtkIdType>(order.size());
   // OriginalCellId: each cell's index in the input, unless the input already carries the ids of
-  // an earlier stage (then they were copied above, reordered with the cells).
+  // an earlier stage (then they are gathered with the other cell data).
   if (!input->GetCellData()->GetArray("OriginalCellId"))
   {
     vtkNew<vtkIdTypeArray> original;
     original->SetName("OriginalCellId");
     original->SetNumberOfTuples(nOut);
-    vtkIdType* ids = original->GetPointer(0);
-    for (vtkIdType i = 0; i < nOut; ++i)
-    {
-      ids[i] = first + order[i];
-    }
+    extras.OriginalIds = original->GetPointer(0);
     outCD->AddArray(original);
   }
+  vtkSmartPointer<vtkCellArray> polys = inPolys->IsStorage64Bit()
+    ? Gathered(inPolys->GetOffsetsArray64(), inPolys->GetConnectivityArray64(), cells, first,
+        triangles, tuples, extras, ids32)
+    : Gathered(inPolys->GetOffsetsArray32(), inPolys->GetConnectivityArray32(), cells, first,
+        triangles, tuples, extras, ids32);
+
+  output->SetPoints(input->GetPoints());
+  output->GetPointData()->PassData(input->GetPointData());
+  output->GetFieldData()->PassData(input->GetFieldData());
+  output->SetPolys(polys);
   this->UpdateProgress(1.0);
   return 1;
 }
