@@ -176,8 +176,9 @@ struct SortedExtras
   vtkIdType* OriginalIds = nullptr; // first + the cell's polygon index
 };
 
-// The polygons in `order` (cell c is polygon c of the input, cell data index first + c) and the
-// tuples of the standard-layout cell arrays, in one parallel pass. The reads go through the order,
+// The polygons in `order` (cell c is polygon c of the input, cell data index first + c), the
+// tuples of the standard-layout cell arrays and the extras, in one parallel pass (no serial pass
+// for the ids, no loop of its own for the depths). The reads go through the order,
 // so they are random: each task asks for the cells a few ahead. Connectivity is written in 32-bit
 // storage (OutT) when the ids fit: half the bytes to write here and to read in the compositor.
 // `triangles`: every input polygon has three points (offsets 3c, no offsets to read).
