@@ -6,6 +6,7 @@
 //
 // Exit status: 0 on success, 2 on a usage error, 1 when an image cannot be read or the two images
 // cannot be compared (different sizes).
+#include "Csv.h"
 #include "ImageMetrics.h"
 
 #include <opencv2/core.hpp>
@@ -144,24 +145,6 @@ std::string Number(double v)
   std::snprintf(buffer, sizeof(buffer), "%.10g", v);
   return buffer;
 }
-
-std::string CsvField(const std::string& s)
-{
-  if (s.find_first_of(",\"\n") == std::string::npos)
-  {
-    return s;
-  }
-  std::string quoted = "\"";
-  for (char c : s)
-  {
-    quoted += c;
-    if (c == '"')
-    {
-      quoted += '"';
-    }
-  }
-  return quoted + "\"";
-}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -283,7 +266,7 @@ int main(int argc, char* argv[])
     {
       csv << ',' << row.first;
     }
-    csv << '\n' << CsvField(inputs[0]) << ',' << CsvField(inputs[1]);
+    csv << '\n' << catar::CsvField(inputs[0]) << ',' << catar::CsvField(inputs[1]);
     for (const auto& row : rows)
     {
       csv << ',' << row.second;

@@ -5,6 +5,7 @@
 #ifndef catarFramePipeline_h
 #define catarFramePipeline_h
 
+#include "Csv.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
@@ -56,24 +57,7 @@ inline double Median(std::vector<double> v)
   return v[v.size() / 2];
 }
 
-/// A CSV field: as it is, or quoted (inner quotes doubled) when it holds a comma, quote or newline.
-inline std::string CsvField(const std::string& s)
-{
-  if (s.find_first_of(",\"\n") == std::string::npos)
-  {
-    return s;
-  }
-  std::string quoted = "\"";
-  for (char c : s)
-  {
-    quoted += c;
-    if (c == '"')
-    {
-      quoted += '"';
-    }
-  }
-  return quoted + "\"";
-}
+using catar::CsvField;
 
 /// The synthetic camera frame the objects are composited onto (the procedural room seen in the
 /// mirror), made once.
@@ -130,8 +114,8 @@ public:
     const double colors[3][3] = { { 1, 0.9, 0.8 }, { 0.5, 0.7, 1 }, { 1, 0.5, 0.5 } };
     for (int k = 0; k < options.lights; ++k)
     {
-      this->Lighting->AddSpotLight(0, 0, 1.3, 0.0, -0.25, 0.9, 40, colors[k % 3][0],
-        colors[k % 3][1], colors[k % 3][2]);
+      this->Lighting->AddSpotLight(
+        0, 0, 1.3, 0.0, -0.25, 0.9, 40, colors[k % 3][0], colors[k % 3][1], colors[k % 3][2]);
     }
     this->Sort->SetInputConnection(this->Lighting->GetOutputPort());
     this->Sort->DropInvisibleCellsOn();
