@@ -464,12 +464,7 @@ struct Run
       return it->second;
     }
     const int errors = Output->Errors;
-    vtkNew<vtkCatadioptricRayTracer> tracer;
-    tracer->SetCamera(this->camera);
-    tracer->SetFrameData(this->frame);
-    tracer->AddMeshData(this->original);
-    tracer->SetMeshLighting(0, pipeline.GetLighting());
-    tracer->SetSamples(this->samples);
+    vtkSmartPointer<vtkCatadioptricRayTracer> tracer = this->Tracer(pipeline.GetLighting());
     tracer->OutputVisibleTriangleOn();
     tracer->Update();
     Check("reference ray tracer", errors, tracer->GetNumberOfHits() > 0);
@@ -505,18 +500,26 @@ struct Run
     return r;
   }
 
+  // The reference renderer for the input mesh, lit as `lighting` lights it, at this study's
+  // samples per pixel.
+  vtkSmartPointer<vtkCatadioptricRayTracer> Tracer(vtkCatadioptricLighting* lighting) const
+  {
+    auto tracer = vtkSmartPointer<vtkCatadioptricRayTracer>::New();
+    tracer->SetCamera(this->camera);
+    tracer->SetFrameData(this->frame);
+    tracer->AddMeshData(this->original);
+    tracer->SetMeshLighting(0, lighting);
+    tracer->SetSamples(this->samples);
+    return tracer;
+  }
+
   // The reference renderer's own frame time: median of `n` frames (lights moved, camera marked
   // modified), Gouraud, no shadows, without ids.
   Row ReferenceSpeed(const std::string& object, int n)
   {
     const int errors = Output->Errors;
     FramePipeline lights(this->original, this->camera, this->frame, FrameOptions());
-    vtkNew<vtkCatadioptricRayTracer> tracer;
-    tracer->SetCamera(this->camera);
-    tracer->SetFrameData(this->frame);
-    tracer->AddMeshData(this->original);
-    tracer->SetMeshLighting(0, lights.GetLighting());
-    tracer->SetSamples(this->samples);
+    vtkSmartPointer<vtkCatadioptricRayTracer> tracer = this->Tracer(lights.GetLighting());
     tracer->Update(); // warm-up: rays back-projected
     std::vector<double> times;
     for (int f = 1; f <= n; ++f)
