@@ -287,6 +287,24 @@ vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnecti
     inOffsets, inConnectivity, order, first, triangles, tuples, extras);
 }
 
+// Whether every polygon has three points (offsets 0, 3, 6, ...): one pass over the offsets.
+// vtkCellArray::IsHomogeneous, which asks each cell its size, took 0.25 ms on the bunny's 69k
+// polygons, an eighth of the sort.
+template<typename ArrayT>
+bool AllTriangles(ArrayT* offsets)
+{
+  const auto* off = offsets->GetPointer(0);
+  const vtkIdType n = offsets->GetNumberOfValues();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (off[i] != 3 * i)
+    {
+      return false;
+    }
+  }
+  return n > 1;
+}
+
 // Output cell arrays like the input's (name, components, attributes), sized for n tuples. Arrays
 // with the standard memory layout are listed in `tuples` for GatherCells, but those in `skip`
 // (left for the caller to fill); the others are filled here, tuple by tuple.
@@ -393,7 +411,8 @@ int vtkCatadioptricPainterSort::RequestData(
   vtkCellArray* inPolys = input->GetPolys();
   const bool ids32 = input->GetNumberOfPoints() <= VTK_TYPE_INT32_MAX &&
     inPolys->GetNumberOfConnectivityIds() <= VTK_TYPE_INT32_MAX;
-  const bool triangles = inPolys->IsHomogeneous() == 3;
+  const bool triangles = inPolys->IsStorage64Bit() ? AllTriangles(inPolys->GetOffsetsArray64())
+                                                   : AllTriangles(inPolys->GetOffsetsArray32());
   vtkCellData* outCD = output->GetCellData();
   vtkUnsignedCharArray* visibleOnes = keptVisibleOnes ? visible : nullptr;
   const std::vector<TupleGather> tuples =

@@ -27,7 +27,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -431,12 +433,15 @@ TEST(vtkCatadioptricPainterSort, FarToNearWithCellDataAligned)
 TEST(vtkCatadioptricPainterSort, OrderIsAStableSortByDepth)
 {
   // Depths made to stress the sort: exact ties, depths that differ only in their last bits (the
-  // radix pass looks at the high half of the key only), long runs of such near ties, zero and
-  // -0, negative and huge values; triangles and quads mixed, and triangles only. The order must be
+  // radix passes look at the top bits only), long runs of such near ties, zero and
+  // -0, negative and huge values; triangles and quads mixed, and triangles only. Then the depths
+  // of one scene (0.3 to 0.9 with exact ties), and depths within a few thousand ulps of each other
+  // (one long run of ties in the radix's high half, settled by the whole key). The order must be
   // exactly std::stable_sort's by decreasing depth, and cell data must follow.
   std::mt19937_64 rng(17);
-  for (const bool quads : { false, true })
+  for (const int scene : { 0, 1, 2, 3 })
   {
+    const bool quads = scene == 1;
     const vtkIdType n = 50000;
     vtkNew<vtkPoints> points;
     for (int i = 0; i < 8; ++i)
@@ -485,6 +490,18 @@ TEST(vtkCatadioptricPainterSort, OrderIsAStableSortByDepth)
           break;
         default:
           break;
+      }
+      if (scene == 2)
+      {
+        d = c % 10 == 0 ? 0.6 : 0.3 + 0.6 * unit(rng);
+      }
+      else if (scene == 3)
+      {
+        std::uint64_t bits;
+        const double base = 0.75;
+        std::memcpy(&bits, &base, sizeof bits);
+        bits += rng() % 4000;
+        std::memcpy(&d, &bits, sizeof d);
       }
       depths.push_back(d);
       depth->InsertNextValue(d);
