@@ -1,5 +1,6 @@
 #include "vtkCatadioptricPainterSort.h"
 
+#include "vtkCatadioptricDepthOrder.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -24,117 +25,21 @@
 
 vtkStandardNewMacro(vtkCatadioptricPainterSort);
 
+vtkCatadioptricPainterSort::vtkCatadioptricPainterSort()
+  : Order(new vtkCatadioptricDepthOrder)
+{
+}
+
+vtkCatadioptricPainterSort::~vtkCatadioptricPainterSort() = default;
+
 namespace
 {
 // Elements per parallel copy task: waking the pool's threads costs more than copying a few
 // thousand tuples; smaller meshes are copied inline.
 constexpr vtkIdType kCopyGrain = 8192;
 
-// A 64-bit key whose unsigned order is the order of decreasing depth (far to near): the IEEE bits
-// made monotone (negative numbers reversed), then complemented. -0 is +0, as the comparison of
-// doubles has it.
-inline std::uint64_t FarToNearKey(double depth)
-{
-  if (depth == 0.0)
-  {
-    depth = 0.0;
-  }
-  std::uint64_t bits;
-  std::memcpy(&bits, &depth, sizeof bits);
-  const std::uint64_t ascending = (bits >> 63) ? ~bits : (bits | (std::uint64_t(1) << 63));
-  return ~ascending;
-}
-
-// A cell to sort: its key and its polygon index.
-struct KeyedCell
-{
-  std::uint64_t key;
-  vtkIdType cell;
-};
-
-// The depth a key was made from (-0 comes back as +0).
-inline double DepthOfKey(std::uint64_t key)
-{
-  const std::uint64_t ascending = ~key;
-  const std::uint64_t bits =
-    (ascending >> 63) ? (ascending & ~(std::uint64_t(1) << 63)) : ~ascending;
-  double depth;
-  std::memcpy(&depth, &bits, sizeof depth);
-  return depth;
-}
-
-// Stable sort by key. An LSD radix sort on the keys' high 32 bits (three digits of 11, 11 and 10
-// bits; a digit that is the same for every key, as the sign and exponent of depths within one
-// scene mostly are, costs no pass), then the runs whose high bits tie (depths within a millionth
-// of each other) sorted by the whole key. Key and index move together, so each pass reads its
-// input in order. Stability keeps equal depths in input order.
-void SortByKey(std::vector<KeyedCell>& cells)
-{
-  constexpr int kShift[3] = { 32, 43, 54 };
-  constexpr int kWidth[3] = { 11, 11, 10 };
-  constexpr std::size_t kBuckets = std::size_t(1) << 11;
-  const std::size_t n = cells.size();
-  std::vector<std::uint32_t> counts(3 * kBuckets, 0);
-  for (const KeyedCell& c : cells)
-  {
-    for (int p = 0; p < 3; ++p)
-    {
-      ++counts[p * kBuckets + ((c.key >> kShift[p]) & ((std::uint64_t(1) << kWidth[p]) - 1))];
-    }
-  }
-  std::vector<KeyedCell> scratch(n);
-  for (int p = 0; p < 3; ++p)
-  {
-    std::uint32_t* count = counts.data() + p * kBuckets;
-    if (std::any_of(count, count + kBuckets, [n](std::uint32_t c) { return c == n; }))
-    {
-      continue; // every key has the same digit here
-    }
-    std::uint32_t sum = 0;
-    for (std::size_t b = 0; b < kBuckets; ++b)
-    {
-      const std::uint32_t c = count[b];
-      count[b] = sum;
-      sum += c;
-    }
-    const int shift = kShift[p];
-    const std::uint64_t mask = (std::uint64_t(1) << kWidth[p]) - 1;
-    for (const KeyedCell& c : cells)
-    {
-      scratch[count[(c.key >> shift) & mask]++] = c;
-    }
-    cells.swap(scratch);
-  }
-  // Runs with the same high half: by the whole key, stably (few and short in real scenes).
-  auto byKey = [](const KeyedCell& a, const KeyedCell& b) { return a.key < b.key; };
-  for (std::size_t b = 0; b < n;)
-  {
-    const std::uint64_t high = cells[b].key >> 32;
-    std::size_t e = b + 1;
-    while (e < n && (cells[e].key >> 32) == high)
-    {
-      ++e;
-    }
-    if (e - b > 16)
-    {
-      std::stable_sort(cells.begin() + b, cells.begin() + e, byKey);
-    }
-    else
-    {
-      for (std::size_t i = b + 1; i < e; ++i) // insertion sort: stable
-      {
-        const KeyedCell c = cells[i];
-        std::size_t j = i;
-        for (; j > b && c.key < cells[j - 1].key; --j)
-        {
-          cells[j] = cells[j - 1];
-        }
-        cells[j] = c;
-      }
-    }
-    b = e;
-  }
-}
+// A cell to draw, in order: its key and its polygon index.
+using KeyedCell = vtkCatadioptricDepthOrder::Cell;
 
 // How many cells ahead the gather asks for what it will read.
 constexpr vtkIdType kPrefetchCells = 16;
@@ -212,7 +117,7 @@ void GatherCells(const InT* off, const InT* conn, const std::vector<KeyedCell>& 
       const vtkIdType c = order[i].cell;
       if (extras.Depths)
       {
-        extras.Depths[i] = DepthOfKey(order[i].key);
+        extras.Depths[i] = vtkCatadioptricDepthOrder::DepthOfKey(order[i].key);
       }
       if (extras.OriginalIds)
       {
@@ -387,24 +292,25 @@ int vtkCatadioptricPainterSort::RequestData(
   const vtkIdType nPolys = input->GetNumberOfPolys();
   const unsigned char* vis = visible ? visible->GetPointer(first) : nullptr;
   auto* depthDoubles = vtkDoubleArray::SafeDownCast(depthArray);
-  std::vector<KeyedCell> cells;
-  cells.reserve(nPolys);
   // Whether every kept cell's Visible is 1 (as vtkCatadioptricProjection writes it): then the
   // output's Visible is all ones, written in order instead of gathered from random places.
-  bool keptVisibleOnes = this->DropInvisibleCells && vis;
-  for (vtkIdType c = 0; c < nPolys; ++c)
+  const bool keptVisibleOnes = this->DropInvisibleCells && vis &&
+    std::all_of(vis, vis + nPolys, [](unsigned char v) { return v <= 1; });
+  // Depths in another type than double: converted once.
+  std::vector<double> converted;
+  if (!depthDoubles)
   {
-    keptVisibleOnes = keptVisibleOnes && vis[c] <= 1;
-    if (!this->DropInvisibleCells || vis[c])
+    converted.resize(static_cast<size_t>(nPolys));
+    for (vtkIdType c = 0; c < nPolys; ++c)
     {
-      cells.push_back({ FarToNearKey(depthDoubles ? depthDoubles->GetValue(first + c)
-                                                  : depthArray->GetComponent(first + c, 0)),
-        c });
+      converted[c] = depthArray->GetComponent(first + c, 0);
     }
   }
   this->UpdateProgress(0.2);
   // Far to near; equal depths keep input order (a stable sort of cells in input order).
-  SortByKey(cells);
+  this->Order->Sort(nPolys, depthDoubles ? depthDoubles->GetPointer(first) : converted.data(),
+    this->DropInvisibleCells ? vis : nullptr);
+  const std::vector<KeyedCell>& cells = this->Order->GetCells();
   this->UpdateProgress(0.6);
 
   // New polygon connectivity and cell data in the sorted order.

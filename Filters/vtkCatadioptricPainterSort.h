@@ -20,6 +20,10 @@
 #include "CatadioptricARFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <memory> // std::unique_ptr
+
+class vtkCatadioptricDepthOrder;
+
 class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricPainterSort : public vtkPolyDataAlgorithm
 {
 public:
@@ -35,12 +39,14 @@ public:
   ///@}
 
 protected:
-  vtkCatadioptricPainterSort() = default;
-  ~vtkCatadioptricPainterSort() override = default;
+  vtkCatadioptricPainterSort();
+  ~vtkCatadioptricPainterSort() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   bool DropInvisibleCells = false;
+  // The order's buffers, kept between executions.
+  std::unique_ptr<vtkCatadioptricDepthOrder> Order;
 
 private:
   vtkCatadioptricPainterSort(const vtkCatadioptricPainterSort&) = delete;
