@@ -54,6 +54,86 @@ unsigned char ToByte(double v)
 {
   return static_cast<unsigned char>(255.0 * std::min(1.0, std::max(0.0, v)) + 0.5);
 }
+
+// Points shaded kShadeLanes at a time (catar::ShadeMany: their square roots and divisions
+// overlap), each with the RGBA bytes it writes. One per thread.
+class ShadeBatch
+{
+public:
+  // The settings of one execution: the shade of a point is
+  // catar::Shade(p, n (turned to the viewer when two-sided), viewer, lights, material with
+  // ambient and diffuse from the base colour when there is one, globalAmbient, shadow flags).
+  struct Settings
+  {
+    const catar::LightSet* Lights;
+    catar::Material Material;
+    catar::Vec3 GlobalAmbient;
+    double AmbientK, DiffuseK, Opacity;
+    bool BaseColours, TwoSided;
+    const catar::RayScene* ShadowScene; // null: no shadows
+  };
+
+  explicit ShadeBatch(const Settings& settings)
+    : S(settings)
+    , Lit(static_cast<size_t>(W) * settings.Lights->size(), 1)
+  {
+    std::fill(this->M, this->M + W, settings.Material);
+  }
+  ~ShadeBatch() { this->Flush(); }
+
+  // Point p (normal n, viewer: world), base colour rgba, whose colour goes to out[0..3].
+  void Add(const catar::Vec3& p, const catar::Vec3& n, const catar::Vec3& viewer,
+    const float rgba[4], unsigned char* out)
+  {
+    const int i = this->Count;
+    if (this->S.BaseColours)
+    {
+      const catar::Vec3 c(rgba[0], rgba[1], rgba[2]);
+      this->M[i].ambient = this->S.AmbientK * c;
+      this->M[i].diffuse = this->S.DiffuseK * c;
+    }
+    this->P[i] = p;
+    this->N[i] = (this->S.TwoSided && n.dot(viewer - p) < 0) ? catar::Vec3(-n) : n;
+    this->Viewer[i] = viewer;
+    if (this->S.ShadowScene)
+    {
+      catar::TraceShadows(*this->S.ShadowScene, p, this->N[i], *this->S.Lights,
+        this->Lit.data() + i * this->S.Lights->size());
+    }
+    this->Alpha[i] = rgba[3];
+    this->Out[i] = out;
+    if (++this->Count == W)
+    {
+      this->Flush();
+    }
+  }
+
+  void Flush()
+  {
+    catar::Vec3 colour[W];
+    catar::ShadeMany(this->Count, this->P, this->N, this->Viewer, *this->S.Lights, this->M,
+      this->S.GlobalAmbient, this->S.ShadowScene ? this->Lit.data() : nullptr, false, colour);
+    for (int i = 0; i < this->Count; ++i)
+    {
+      unsigned char* o = this->Out[i];
+      o[0] = ToByte(colour[i].x());
+      o[1] = ToByte(colour[i].y());
+      o[2] = ToByte(colour[i].z());
+      o[3] = ToByte(this->S.Opacity * this->Alpha[i]);
+    }
+    this->Count = 0;
+  }
+
+private:
+  static constexpr int W = catar::kShadeLanes;
+  const Settings& S;
+  std::vector<unsigned char> Lit; // W x lights shadow flags
+  int Count = 0;
+  catar::Vec3 P[W], N[W], Viewer[W];
+  catar::Material M[W];
+  float Alpha[W];
+  unsigned char* Out[W];
+};
 } // namespace
 
 struct vtkCatadioptricLighting::Internals
@@ -292,7 +372,6 @@ int vtkCatadioptricLighting::RequestData(
   const vtkCatadioptricColorArray base(input, this->InputColorArrayName, solid);
   const catar::LightSet lights(vtkCatadioptricLightingSupport::ConvertLights(this->Lights));
   const catar::Vec3 globalAmbient = V3(this->GlobalAmbient);
-  const bool twoSided = this->TwoSidedLighting;
   const int mode = this->ShadingMode;
 
   // Shadows: the mesh's own triangles.
@@ -317,29 +396,18 @@ int vtkCatadioptricLighting::RequestData(
   const catar::RayScene& scene = this->Internal->Scene;
   this->UpdateProgress(0.1);
 
-  // The colour of point p with normal n seen from viewer (all world), base colour rgba.
-  // m: this thread's copy of the material, whose colours follow the base colour.
-  const double ambientK = prop->GetAmbient();
-  const double diffuseK = prop->GetDiffuse();
-  auto shade = [&](const catar::Vec3& p, catar::Vec3 n, const catar::Vec3& viewer,
-                 const float rgba[4], catar::Material& m, std::vector<unsigned char>& lit) {
-    if (base.HasArray())
-    {
-      const catar::Vec3 c(rgba[0], rgba[1], rgba[2]);
-      m.ambient = ambientK * c;
-      m.diffuse = diffuseK * c;
-    }
-    if (twoSided && n.dot(viewer - p) < 0)
-    {
-      n = -n;
-    }
-    if (shadows)
-    {
-      catar::TraceShadows(scene, p, n, lights, lit.data());
-    }
-    return catar::Shade(
-      p, n, viewer, lights, m, globalAmbient, shadows ? lit.data() : nullptr, false);
-  };
+  // The colour of point p with normal n seen from viewer (all world), base colour rgba: shaded
+  // in batches (ShadeBatch), one per thread.
+  ShadeBatch::Settings shading;
+  shading.Lights = &lights;
+  shading.Material = material;
+  shading.GlobalAmbient = globalAmbient;
+  shading.AmbientK = prop->GetAmbient();
+  shading.DiffuseK = prop->GetDiffuse();
+  shading.Opacity = opacity;
+  shading.BaseColours = base.HasArray();
+  shading.TwoSided = this->TwoSidedLighting;
+  shading.ShadowScene = shadows ? &scene : nullptr;
 
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetName("Colors");
@@ -390,8 +458,7 @@ int vtkCatadioptricLighting::RequestData(
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(pointVisible);
     auto* mirrorDoubles = vtkDoubleArray::SafeDownCast(mirror);
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
-      std::vector<unsigned char> lit(lights.size(), 1);
-      catar::Material m = material;
+      ShadeBatch batch(shading);
       for (vtkIdType i = b; i < e; ++i)
       {
         unsigned char* o = out + 4 * i;
@@ -430,11 +497,7 @@ int vtkCatadioptricLighting::RequestData(
           std::copy(&pointBase[4 * i], &pointBase[4 * i] + 4, rgba);
         }
         // The viewer: the reflection point, camera to world (CameraModel::CameraToWorld).
-        const catar::Vec3 c = shade(p, n, cameraToWorld * (V3(mp) - cameraT), rgba, m, lit);
-        o[0] = ToByte(c.x());
-        o[1] = ToByte(c.y());
-        o[2] = ToByte(c.z());
-        o[3] = ToByte(opacity * rgba[3]);
+        batch.Add(p, n, cameraToWorld * (V3(mp) - cameraT), rgba, o);
       }
     });
     output->GetCellData()->RemoveArray("Colors");
@@ -453,8 +516,7 @@ int vtkCatadioptricLighting::RequestData(
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(cellVisible);
     vtkCatadioptricParallel::For(
       0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
-        std::vector<unsigned char> lit(lights.size(), 1);
-        catar::Material m = material;
+        ShadeBatch batch(shading);
         vtkNew<vtkIdList> scratch;
         for (vtkIdType c = b; c < e; ++c)
         {
@@ -489,20 +551,22 @@ int vtkCatadioptricLighting::RequestData(
               rgba[j] += v[j] / (base.IsPerPoint() ? n : 1);
             }
           }
-          catar::Vec3 color(rgba[0], rgba[1], rgba[2]);
+          unsigned char* o = out + 4 * cellId;
           if (mode == FLAT)
           {
             const double len = area.norm();
             const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
             double cm[3];
             centroidMirror->GetTuple(cellId, cm);
-            color = shade(centroid, normal, cameraToWorld * (V3(cm) - cameraT), rgba, m, lit);
+            batch.Add(centroid, normal, cameraToWorld * (V3(cm) - cameraT), rgba, o);
           }
-          unsigned char* o = out + 4 * cellId;
-          o[0] = ToByte(color.x());
-          o[1] = ToByte(color.y());
-          o[2] = ToByte(color.z());
-          o[3] = ToByte(opacity * rgba[3]);
+          else
+          {
+            o[0] = ToByte(rgba[0]);
+            o[1] = ToByte(rgba[1]);
+            o[2] = ToByte(rgba[2]);
+            o[3] = ToByte(opacity * rgba[3]);
+          }
         }
       });
     output->GetPointData()->RemoveArray("Colors");

@@ -146,44 +146,77 @@ double LightSet::Attenuation(std::size_t k, double distance) const
 Vec3 Shade(const Vec3& p, const Vec3& normal, const Vec3& viewer, const LightSet& lights,
   const Material& m, const Vec3& globalAmbient, const unsigned char* lit, bool twoSided)
 {
-  Vec3 n = normal;
-  Vec3 e = viewer - p;
-  const double en = e.norm();
-  e = en > 0 ? Vec3(e / en) : Vec3(n);
-  if (twoSided && n.dot(e) < 0)
+  Vec3 color;
+  ShadeMany(1, &p, &normal, &viewer, lights, &m, globalAmbient, lit, twoSided, &color);
+  return color;
+}
+
+void ShadeMany(int count, const Vec3* p, const Vec3* normal, const Vec3* viewer,
+  const LightSet& lights, const Material* materials, const Vec3& globalAmbient,
+  const unsigned char* lit, bool twoSided, Vec3* out)
+{
+  constexpr int W = kShadeLanes;
+  count = std::min(count, W);
+  const std::size_t nLights = lights.size();
+  // Each loop below runs one step for every point: the points' steps are independent.
+  Vec3 n[W], e[W], color[W];
+  for (int i = 0; i < count; ++i)
   {
-    n = -n;
+    const Material& m = materials[i];
+    n[i] = normal[i];
+    const Vec3 toViewer = viewer[i] - p[i];
+    const double en = toViewer.norm();
+    e[i] = en > 0 ? Vec3(toViewer / en) : Vec3(n[i]);
+    if (twoSided && n[i].dot(e[i]) < 0)
+    {
+      n[i] = -n[i];
+    }
+    color[i] = m.emission + globalAmbient.cwiseProduct(m.ambient);
   }
-  Vec3 color = m.emission + globalAmbient.cwiseProduct(m.ambient);
-  for (std::size_t k = 0; k < lights.size(); ++k)
+  for (std::size_t k = 0; k < nLights; ++k)
   {
     const LightSource& light = lights[k];
-    double distance = 0;
-    const Vec3 l = lights.DirectionToLight(k, p, &distance);
-    const double spot = lights.SpotFactor(k, l);
-    if (spot == 0.0)
+    Vec3 l[W];
+    double distance[W], spot[W];
+    for (int i = 0; i < count; ++i)
     {
-      continue;
+      distance[i] = 0;
+      l[i] = lights.DirectionToLight(k, p[i], &distance[i]);
     }
-    const double factor = lights.Attenuation(k, distance) * spot;
-    if (factor == 0.0)
+    for (int i = 0; i < count; ++i)
     {
-      continue;
+      spot[i] = lights.SpotFactor(k, l[i]);
     }
-    Vec3 term = light.ambient.cwiseProduct(m.ambient);
-    const double nl = n.dot(l);
-    if (nl > 0 && (!lit || lit[k]))
+    for (int i = 0; i < count; ++i)
     {
-      term += nl * light.diffuse.cwiseProduct(m.diffuse);
-      const Vec3 r = 2.0 * nl * n - l;
-      const double re = r.dot(e);
-      if (re > 0 && m.shininess >= 0)
+      if (spot[i] == 0.0)
       {
-        term += PhongPower(re, m.shininess) * light.specular.cwiseProduct(m.specular);
+        continue;
       }
+      const double factor = lights.Attenuation(k, distance[i]) * spot[i];
+      if (factor == 0.0)
+      {
+        continue;
+      }
+      const Material& m = materials[i];
+      Vec3 term = light.ambient.cwiseProduct(m.ambient);
+      const double nl = n[i].dot(l[i]);
+      if (nl > 0 && (!lit || lit[i * nLights + k]))
+      {
+        term += nl * light.diffuse.cwiseProduct(m.diffuse);
+        const Vec3 r = 2.0 * nl * n[i] - l[i];
+        const double re = r.dot(e[i]);
+        if (re > 0 && m.shininess >= 0)
+        {
+          term += PhongPower(re, m.shininess) * light.specular.cwiseProduct(m.specular);
+        }
+      }
+      color[i] += factor * term;
     }
-    color += factor * term;
   }
-  return color.cwiseMax(0.0).cwiseMin(1.0);
+  for (int i = 0; i < count; ++i)
+  {
+    out[i] = color[i].cwiseMax(0.0).cwiseMin(1.0);
+  }
 }
 } // namespace catar

@@ -106,6 +106,17 @@ private:
 Vec3 Shade(const Vec3& p, const Vec3& n, const Vec3& viewer, const LightSet& lights,
   const Material& material, const Vec3& globalAmbient, const unsigned char* lit = nullptr,
   bool twoSided = true);
+
+/// How many points ShadeMany shades at once.
+constexpr int kShadeLanes = 8;
+
+/// Shade for `count` points (at most kShadeLanes; more are not shaded) side by side, each step for
+/// every point before the next step, so that their square roots and divisions overlap instead of
+/// waiting on each other: out[i] is exactly Shade(p[i], n[i], viewer[i], lights, materials[i],
+/// globalAmbient, lit ? lit + i * lights.size() : nullptr, twoSided).
+void ShadeMany(int count, const Vec3* p, const Vec3* n, const Vec3* viewer, const LightSet& lights,
+  const Material* materials, const Vec3& globalAmbient, const unsigned char* lit, bool twoSided,
+  Vec3* out);
 } // namespace catar
 
 #endif

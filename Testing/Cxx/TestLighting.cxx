@@ -186,3 +186,75 @@ TEST(Lighting, SpotExponentAndTwoSidedLighting)
   EXPECT_EQ(oneSided, 0.0);
   EXPECT_NEAR(twoSided, 1.0, 1e-12);
 }
+
+TEST(Lighting, ShadeManyIsShadeForEachPoint)
+{
+  // Eight points side by side give each point's Shade exactly: lights of every kind (spot
+  // exponents whole and not, a narrow cone that leaves some points dark, attenuation), materials
+  // that differ per point (shininess whole, fractional, huge, negative), shadow flags per point
+  // and light, one- and two-sided, and fewer points than lanes.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto randomVec = [&](double scale) -> Vec3 { return Vec3(u(rng), u(rng), u(rng)) * scale; };
+  std::vector<LightSource> sources;
+  for (int k = 0; k < 4; ++k)
+  {
+    LightSource l;
+    l.kind = k == 0 ? LightSource::Kind::Directional
+      : k == 1      ? LightSource::Kind::Point
+                    : LightSource::Kind::Spot;
+    l.position = Vec3(0, 0, 2) + randomVec(0.5);
+    l.focalPoint = randomVec(0.2);
+    l.ambient = randomVec(0.1).cwiseAbs();
+    l.diffuse = randomVec(1.0).cwiseAbs();
+    l.specular = randomVec(1.0).cwiseAbs();
+    l.coneAngle = k == 3 ? 8.0 : 50.0;
+    l.exponent = k == 3 ? 2.5 : 3.0;
+    l.attenuation = Vec3(1.0, 0.3 * (k % 2), 0.1 * (k % 2));
+    sources.push_back(l);
+  }
+  const LightSet lights(sources);
+  const Vec3 ga(0.1, 0.2, 0.05);
+  const double shininess[] = { 1.0, 7.5, 300.0, -1.0, 20.0, 0.0, 2.0, 64.0 };
+  for (const bool twoSided : { false, true })
+  {
+    for (const int count : { kShadeLanes, 3 })
+    {
+      for (int trial = 0; trial < 50; ++trial)
+      {
+        Vec3 p[kShadeLanes], n[kShadeLanes], viewer[kShadeLanes], out[kShadeLanes];
+        Material m[kShadeLanes];
+        unsigned char lit[kShadeLanes * 4];
+        for (int i = 0; i < kShadeLanes; ++i)
+        {
+          p[i] = randomVec(0.3);
+          n[i] = RandomUnit(rng);
+          viewer[i] = i == 5 ? p[i] : Vec3(0, 0, -1) + randomVec(0.1); // i = 5: at the point
+          m[i].ambient = randomVec(0.3).cwiseAbs();
+          m[i].diffuse = randomVec(1.0).cwiseAbs();
+          m[i].specular = randomVec(1.0).cwiseAbs();
+          m[i].emission = randomVec(0.05).cwiseAbs();
+          m[i].shininess = shininess[i];
+          for (int k = 0; k < 4; ++k)
+          {
+            lit[i * 4 + k] = (rng() % 3) != 0 ? 1 : 0;
+          }
+        }
+        for (const bool shadows : { false, true })
+        {
+          ShadeMany(count, p, n, viewer, lights, m, ga, shadows ? lit : nullptr, twoSided, out);
+          for (int i = 0; i < count; ++i)
+          {
+            const Vec3 one = Shade(
+              p[i], n[i], viewer[i], lights, m[i], ga, shadows ? lit + i * 4 : nullptr, twoSided);
+            for (int c = 0; c < 3; ++c)
+            {
+              ASSERT_EQ(out[i][c], one[c])
+                << "point " << i << " of " << count << ", trial " << trial;
+            }
+          }
+        }
+      }
+    }
+  }
+}
