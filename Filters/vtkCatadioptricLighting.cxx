@@ -14,6 +14,7 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
@@ -457,6 +458,14 @@ int vtkCatadioptricLighting::RequestData(
     const vtkCatadioptricPointReader points(input->GetPoints());
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(pointVisible);
     auto* mirrorDoubles = vtkDoubleArray::SafeDownCast(mirror);
+    // Double reflection points and float or double normals are read through raw pointers.
+    const double* mirrorValues = (mirrorDoubles && mirror->GetNumberOfComponents() == 3)
+      ? mirrorDoubles->GetPointer(0)
+      : nullptr;
+    auto* normalFloatArray = normals.empty() ? vtkFloatArray::SafeDownCast(inNormals) : nullptr;
+    auto* normalDoubleArray = normals.empty() ? vtkDoubleArray::SafeDownCast(inNormals) : nullptr;
+    const float* normalFloats = normalFloatArray ? normalFloatArray->GetPointer(0) : nullptr;
+    const double* normalDoubles = normalDoubleArray ? normalDoubleArray->GetPointer(0) : nullptr;
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
       ShadeBatch batch(shading);
       for (vtkIdType i = b; i < e; ++i)
@@ -468,9 +477,9 @@ int vtkCatadioptricLighting::RequestData(
           continue;
         }
         double mp[3], nn[3];
-        if (mirrorDoubles && mirror->GetNumberOfComponents() == 3)
+        if (mirrorValues)
         {
-          std::copy(mirrorDoubles->GetPointer(3 * i), mirrorDoubles->GetPointer(3 * i) + 3, mp);
+          std::copy(mirrorValues + 3 * i, mirrorValues + 3 * i + 3, mp);
         }
         else
         {
@@ -478,7 +487,16 @@ int vtkCatadioptricLighting::RequestData(
         }
         const catar::Vec3 p = points(i);
         catar::Vec3 n;
-        if (normals.empty())
+        if (normalFloats)
+        {
+          n = catar::Vec3(normalFloats[3 * i], normalFloats[3 * i + 1], normalFloats[3 * i + 2])
+                .normalized();
+        }
+        else if (normalDoubles)
+        {
+          n = V3(normalDoubles + 3 * i).normalized();
+        }
+        else if (normals.empty())
         {
           inNormals->GetTuple(i, nn);
           n = V3(nn).normalized();
