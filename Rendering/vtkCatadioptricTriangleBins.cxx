@@ -225,18 +225,17 @@ bool vtkCatadioptricTriangleBins::Build(
   {
     this->Parts.resize(this->CellChunks.size());
   }
-  vtkCatadioptricParallel::For(
-    0, static_cast<vtkIdType>(this->CellChunks.size()), 1, [&](vtkIdType c0, vtkIdType c1) {
-      for (vtkIdType c = c0; c < c1; ++c)
+  // One chunk per task: a range of chunks per task left a thread idle for the last range's
+  // length at the end.
+  vtkCatadioptricParallel::ForEachIndex(
+    0, static_cast<vtkIdType>(this->CellChunks.size()), [&](vtkIdType c) {
+      Chunk& chunk = this->CellChunks[c];
+      this->MakeTriangles(chunk);
+      if (!this->Sequenced)
       {
-        Chunk& chunk = this->CellChunks[c];
-        this->MakeTriangles(chunk);
-        if (!this->Sequenced)
-        {
-          const std::uint32_t first = static_cast<std::uint32_t>(chunk.First);
-          this->BinPart(this->Parts[c], chunk.Drawable,
-            [first](vtkIdType i) { return first + static_cast<std::uint32_t>(i); });
-        }
+        const std::uint32_t first = static_cast<std::uint32_t>(chunk.First);
+        this->BinPart(this->Parts[c], chunk.Drawable,
+          [first](vtkIdType i) { return first + static_cast<std::uint32_t>(i); });
       }
     });
 
