@@ -1,5 +1,7 @@
 #include "SphereProjection.h"
 
+#include "Lanes.h"
+
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
@@ -493,80 +495,144 @@ ProjectionStatus MirrorFrame::Reflect(
   return ProjectionStatus::Valid;
 }
 
+namespace
+{
+using namespace catar::lanes;
+constexpr int kPairs = MirrorFrame::kLanes / kW;
+static_assert(MirrorFrame::kLanes % kW == 0, "lanes come in pairs");
+} // namespace
+
 void MirrorFrame::ReflectNear(
   int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints, unsigned char* settled) const
 {
   // Plain Newton from the guess, accepted when it converges within a few steps to a point that
   // both the camera and B see (an > 0, bn > 0) with 0 <= t <= beta (bt >= 0): that arc is
-  // Reflect's bracket, where the root is unique, so this is the physical reflection. Each stage
-  // runs for every lane before the next stage: the lanes' divisions and square roots overlap
-  // instead of waiting on each other.
-  constexpr int W = kLanes;
-  n = std::min(n, W);
-  double bx[W], by[W], u[W], q[W][5];
-  Vec3 e2[W];
-  bool ok[W];
-  for (int l = 0; l < n; ++l)
+  // Reflect's bracket, where the root is unique, so this is the physical reflection. The lanes
+  // run in pairs (Lanes: one instruction for both), and each stage runs for every pair before
+  // the next stage, so that the pairs' divisions and square roots overlap instead of waiting on
+  // each other. Lanes past n compute on zeros and are not used.
+  n = std::max(0, std::min(n, kLanes));
+  const Lanes zero = Splat(0.0), one = Splat(1.0), two = Splat(2.0);
+  const Lanes cx = Splat(this->Centre.x()), cy = Splat(this->Centre.y()),
+              cz = Splat(this->Centre.z());
+  const Lanes e1x = Splat(this->E1.x()), e1y = Splat(this->E1.y()), e1z = Splat(this->E1.z());
+  const Lanes a = Splat(this->A);
+  Lanes bx[kPairs], by[kPairs], fx[kPairs], fy[kPairs], fz[kPairs], u[kPairs];
+  Lanes q0[kPairs], q1[kPairs], q2[kPairs], q3[kPairs], q4[kPairs];
+  LaneMask ok[kPairs], converged[kPairs];
+  for (int g = 0; g < kPairs; ++g)
   {
-    const Vec3 B = (points[l] - this->Centre) * this->InvRadius;
-    const double b = B.norm();
-    bx[l] = B.dot(this->E1);
-    const Vec3 perp = B - bx[l] * this->E1;
-    by[l] = perp.norm();
+    Lanes px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
+    LaneMask used = zero == one;
+    for (int k = 0; k < kW; ++k)
+    {
+      const int l = g * kW + k;
+      if (l < n)
+      {
+        px[k] = points[l].x();
+        py[k] = points[l].y();
+        pz[k] = points[l].z();
+        gx[k] = guesses[l].x();
+        gy[k] = guesses[l].y();
+        gz[k] = guesses[l].z();
+        used[k] = -1;
+      }
+    }
+    // B = (p - centre) / R; bx along E1, by across it (e2 = f, the plane's second axis).
+    const Lanes ir = Splat(this->InvRadius);
+    const Lanes Bx = (px - cx) * ir, By = (py - cy) * ir, Bz = (pz - cz) * ir;
+    const Lanes b = Sqrt(Bx * Bx + By * By + Bz * Bz);
+    bx[g] = Bx * e1x + By * e1y + Bz * e1z;
+    const Lanes qx = Bx - bx[g] * e1x, qy = By - bx[g] * e1y, qz = Bz - bx[g] * e1z;
+    by[g] = Sqrt(qx * qx + qy * qy + qz * qz);
     // Outside the mirror by more than the touching tolerance, off the axis (Reflect's cases).
-    ok[l] = this->Valid && std::isfinite(b) && b > 1.0 + kOnSurfaceTolerance && by[l] > 1e-300 &&
-      by[l] > 1e-15 * b;
-    e2[l] = perp / by[l];
+    ok[g] = used & Finite(b) & (b > Splat(1.0 + kOnSurfaceTolerance)) & (by[g] > Splat(1e-300)) &
+      (by[g] > Splat(1e-15) * b);
+    if (!this->Valid)
+    {
+      ok[g] = used & ~used;
+    }
+    fx[g] = qx / by[g];
+    fy[g] = qy / by[g];
+    fz[g] = qz / by[g];
+    // The guess in the plane: u = tan(t / 2) of its angle t from E1.
+    const Lanes dx = gx - cx, dy = gy - cy, dz = gz - cz;
+    const Lanes gc = dx * e1x + dy * e1y + dz * e1z;
+    const Lanes gs = dx * fx[g] + dy * fy[g] + dz * fz[g];
+    const Lanes gn = Sqrt(gc * gc + gs * gs);
+    ok[g] &= (gn > zero) & (gc > Splat(-0.5) * gn) & Finite(gn);
+    u[g] = gs / (gn + gc);
+    // ReflectionQuartic's coefficients.
+    q0[g] = by[g] * (a + one);
+    q1[g] = two * (two * a * bx[g] + a + bx[g]);
+    q2[g] = Splat(-6.0) * a * by[g];
+    q3[g] = two * (a + bx[g] - two * a * bx[g]);
+    q4[g] = by[g] * (a - one);
+    converged[g] = used & ~used;
   }
-  for (int l = 0; l < n; ++l)
-  {
-    const Vec3 d = guesses[l] - this->Centre;
-    const double gc = d.dot(this->E1);
-    const double gs = d.dot(e2[l]);
-    const double gn = std::sqrt(gc * gc + gs * gs);
-    ok[l] = ok[l] && gn > 0.0 && gc > -0.5 * gn && std::isfinite(gn);
-    u[l] = gs / (gn + gc);
-    const ReflectionQuartic quartic(this->A, bx[l], by[l]);
-    std::copy(quartic.c, quartic.c + 5, q[l]);
-  }
+
   // Plain Newton, as Reflect: a lane stops at its first step below the tolerance (that step
   // taken); lanes still moving after four steps are not settled.
-  bool converged[W] = {};
   for (int it = 0; it < 4; ++it)
   {
     bool moving = false;
-    for (int l = 0; l < n; ++l)
+    for (int g = 0; g < kPairs; ++g)
     {
-      if (converged[l] || !ok[l])
+      const LaneMask active = ok[g] & ~converged[g];
+      if (!Any(active))
       {
         continue;
       }
-      double dq = 0.0;
-      const double step = detail::PolyEval(q[l], u[l], dq) / dq;
-      u[l] -= step;
-      converged[l] = std::abs(step) <= 1e-9 * (1.0 + std::abs(u[l]));
-      moving = moving || !converged[l];
+      // detail::PolyEval: Horner's rule for the value and the derivative.
+      Lanes p = q0[g], dp = zero;
+      dp = dp * u[g] + p;
+      p = p * u[g] + q1[g];
+      dp = dp * u[g] + p;
+      p = p * u[g] + q2[g];
+      dp = dp * u[g] + p;
+      p = p * u[g] + q3[g];
+      dp = dp * u[g] + p;
+      p = p * u[g] + q4[g];
+      const Lanes step = p / dp;
+      u[g] = Select(active, u[g] - step, u[g]);
+      converged[g] |= active & (Abs(step) <= Splat(1e-9) * (one + Abs(u[g])));
+      moving = moving || Any(ok[g] & ~converged[g]);
     }
     if (!moving)
     {
       break;
     }
   }
-  for (int l = 0; l < n; ++l)
+
+  // On the arc both the camera and B see (CircleAt, CameraSees).
+  const Lanes r = Splat(this->Radius);
+  for (int g = 0; g < kPairs; ++g)
   {
-    settled[l] = 0;
-    if (!ok[l] || !converged[l] || !(u[l] >= 0.0))
+    const Lanes uu = u[g] * u[g];
+    const Lanes w = one / (one + uu);
+    const Lanes c = (one - uu) * w;
+    const Lanes sn = two * u[g] * w;
+    const Lanes bn = bx[g] * c + by[g] * sn - one;
+    const Lanes bt = by[g] * c - bx[g] * sn;
+    const Lanes an = a * c - one;
+    const Lanes at = -a * sn;
+    const LaneMask sees =
+      (an > zero) & (an * an > Splat(kGrazingCosine * kGrazingCosine) * (an * an + at * at));
+    const LaneMask good = ok[g] & converged[g] & (u[g] >= zero) & sees & (bn > zero) & (bt >= zero);
+    const Lanes mx = cx + r * (c * e1x + sn * fx[g]);
+    const Lanes my = cy + r * (c * e1y + sn * fy[g]);
+    const Lanes mz = cz + r * (c * e1z + sn * fz[g]);
+    for (int k = 0; k < kW; ++k)
     {
-      continue;
-    }
-    double c = 0.0, sn = 0.0;
-    CircleAt(u[l], c, sn);
-    const double bn = bx[l] * c + by[l] * sn - 1.0;
-    const double bt = by[l] * c - bx[l] * sn;
-    if (CameraSees(this->A, c, sn) && bn > 0.0 && bt >= 0.0)
-    {
-      mirrorPoints[l] = this->Centre + this->Radius * (c * this->E1 + sn * e2[l]);
-      settled[l] = 1;
+      const int l = g * kW + k;
+      if (l < n)
+      {
+        settled[l] = good[k] ? 1 : 0;
+        if (good[k])
+        {
+          mirrorPoints[l] = Vec3(mx[k], my[k], mz[k]);
+        }
+      }
     }
   }
 }
