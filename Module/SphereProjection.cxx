@@ -510,8 +510,10 @@ void MirrorFrame::ReflectNear(
   // Reflect's bracket, where the root is unique, so this is the physical reflection. The lanes
   // run in pairs (Lanes: one instruction for both), and each stage runs for every pair before
   // the next stage, so that the pairs' divisions and square roots overlap instead of waiting on
-  // each other. Lanes past n compute on zeros and are not used.
+  // each other. The second lane of a last pair
+  // past n computes on zeros and is not used.
   n = std::max(0, std::min(n, kLanes));
+  const int pairs = (n + kW - 1) / kW; // the pairs that hold a lane below n
   const Lanes zero = Splat(0.0), one = Splat(1.0), two = Splat(2.0);
   const Lanes cx = Splat(this->Centre.x()), cy = Splat(this->Centre.y()),
               cz = Splat(this->Centre.z());
@@ -520,7 +522,7 @@ void MirrorFrame::ReflectNear(
   Lanes bx[kPairs], by[kPairs], fx[kPairs], fy[kPairs], fz[kPairs], u[kPairs];
   Lanes q0[kPairs], q1[kPairs], q2[kPairs], q3[kPairs], q4[kPairs];
   LaneMask ok[kPairs], converged[kPairs];
-  for (int g = 0; g < kPairs; ++g)
+  for (int g = 0; g < pairs; ++g)
   {
     Lanes px = zero, py = zero, pz = zero, gx = zero, gy = zero, gz = zero;
     LaneMask used = zero == one;
@@ -576,7 +578,7 @@ void MirrorFrame::ReflectNear(
   for (int it = 0; it < 4; ++it)
   {
     bool moving = false;
-    for (int g = 0; g < kPairs; ++g)
+    for (int g = 0; g < pairs; ++g)
     {
       const LaneMask active = ok[g] & ~converged[g];
       if (!Any(active))
@@ -606,7 +608,7 @@ void MirrorFrame::ReflectNear(
 
   // On the arc both the camera and B see (CircleAt, CameraSees).
   const Lanes r = Splat(this->Radius);
-  for (int g = 0; g < kPairs; ++g)
+  for (int g = 0; g < pairs; ++g)
   {
     const Lanes uu = u[g] * u[g];
     const Lanes w = one / (one + uu);
