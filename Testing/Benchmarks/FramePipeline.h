@@ -28,6 +28,10 @@
 #include <string>
 #include <vector>
 
+#if defined(__GLIBC__)
+#include <malloc.h> // malloc_trim
+#endif
+
 namespace catar_benchmark
 {
 using Clock = std::chrono::steady_clock;
@@ -37,9 +41,14 @@ inline double Ms(Clock::time_point a, Clock::time_point b)
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-/// Resident memory of this process in MiB (Linux /proc/self/statm; 0 elsewhere).
+/// Resident memory of this process in MiB (Linux /proc/self/statm; 0 elsewhere), after the C
+/// library has given its free heap memory back (glibc's malloc_trim), so that what is counted is
+/// what is in use rather than where the allocator last left its arenas.
 inline double ResidentMiB()
 {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
   std::ifstream statm("/proc/self/statm");
   long pages = 0, resident = 0;
   statm >> pages >> resident;
