@@ -510,8 +510,7 @@ void MirrorFrame::ReflectNear(
   // Reflect's bracket, where the root is unique, so this is the physical reflection. The lanes
   // run in pairs (Lanes: one instruction for both), and each stage runs for every pair before
   // the next stage, so that the pairs' divisions and square roots overlap instead of waiting on
-  // each other. The second lane of a last pair
-  // past n computes on zeros and is not used.
+  // each other. The second lane of a last pair past n computes on zeros and is not used.
   n = std::max(0, std::min(n, kLanes));
   const int pairs = (n + kW - 1) / kW; // the pairs that hold a lane below n
   const Lanes zero = Splat(0.0), one = Splat(1.0), two = Splat(2.0);
