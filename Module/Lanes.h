@@ -123,6 +123,21 @@ inline Lanes Splat(double x)
   return v;
 }
 
+// x as a T: a double, or the same value in every lane, so that one template serves both one
+// point and a pair of lanes with the same operations.
+template<typename T>
+T Constant(double x);
+template<>
+inline double Constant<double>(double x)
+{
+  return x;
+}
+template<>
+inline Lanes Constant<Lanes>(double x)
+{
+  return Splat(x);
+}
+
 // a where m, else b.
 inline Lanes Select(LaneMask m, Lanes a, Lanes b)
 {

@@ -9,23 +9,7 @@ namespace catar
 {
 Vec3 DirectionToLight(const LightSource& light, const Vec3& p, double* distance)
 {
-  if (light.kind == LightSource::Kind::Directional)
-  {
-    if (distance)
-    {
-      *distance = std::numeric_limits<double>::infinity();
-    }
-    const Vec3 d = light.position - light.focalPoint;
-    const double n = d.norm();
-    return n > 0 ? Vec3(d / n) : Vec3(0, 0, 1);
-  }
-  const Vec3 d = light.position - p;
-  const double n = d.norm();
-  if (distance)
-  {
-    *distance = n;
-  }
-  return n > 0 ? Vec3(d / n) : Vec3(0, 0, 0);
+  return LightSet({ light }).DirectionToLight(0, p, distance);
 }
 
 double Attenuation(const LightSource& light, double distance)

@@ -51,11 +51,11 @@ int SolveQuadratic(double a, double b, double c, double roots[2])
   return 2;
 }
 
-template<int N>
-double PolyEval(const double (&c)[N], double x, double& derivative)
+template<int N, typename T>
+T PolyEval(const T (&c)[N], T x, T& derivative)
 {
-  double p = c[0];
-  double dp = 0.0;
+  T p = c[0];
+  T dp = lanes::Constant<T>(0.0);
   for (int i = 1; i < N; ++i)
   {
     dp = dp * x + p;
@@ -250,31 +250,45 @@ inline double TanHalf(double c, double s)
 }
 
 // The point (c, s) = (cos t, sin t) of the unit circle at u = tan(t / 2).
-inline void CircleAt(double u, double& c, double& s)
+template<typename T>
+inline void CircleAt(T u, T& c, T& s)
 {
-  const double w = 1.0 / (1.0 + u * u);
-  c = (1.0 - u * u) * w;
-  s = 2.0 * u * w;
+  const T one = lanes::Constant<T>(1.0);
+  const T w = one / (one + u * u);
+  c = (one - u * u) * w;
+  s = lanes::Constant<T>(2.0) * u * w;
 }
 
 // Whether the camera at (a, 0) sees the circle point (c, s) at more than grazing incidence: the
-// cosine of the incidence angle, an / |(an, at)|, above kGrazingCosine (no square root).
-inline bool CameraSees(double a, double c, double s)
+// cosine of the incidence angle, an / |(an, at)|, above kGrazingCosine (no square root). A bool
+// for doubles, a mask per lane for lanes.
+template<typename T>
+inline auto CameraSees(T a, T c, T s)
 {
-  const double an = a * c - 1.0;
-  const double at = -a * s;
-  return an > 0.0 && an * an > kGrazingCosine * kGrazingCosine * (an * an + at * at);
+  const T an = a * c - lanes::Constant<T>(1.0);
+  const T at = -a * s;
+  return (an > lanes::Constant<T>(0.0)) &
+    (an * an > lanes::Constant<T>(kGrazingCosine * kGrazingCosine) * (an * an + at * at));
 }
 
-// The reflection quartic of SphereProjection.h in u = tan(t / 2), highest degree first.
+// The coefficients of the reflection quartic of SphereProjection.h in u = tan(t / 2), highest
+// degree first.
+template<typename T>
+inline void QuarticCoefficients(T a, T bx, T by, T (&c)[5])
+{
+  const T one = lanes::Constant<T>(1.0), two = lanes::Constant<T>(2.0);
+  c[0] = by * (a + one);
+  c[1] = two * (two * a * bx + a + bx);
+  c[2] = lanes::Constant<T>(-6.0) * a * by;
+  c[3] = two * (a + bx - two * a * bx);
+  c[4] = by * (a - one);
+}
+
+// The reflection quartic for one point.
 struct ReflectionQuartic
 {
   double c[5];
-  ReflectionQuartic(double a, double bx, double by)
-    : c{ by * (a + 1.0), 2.0 * (2.0 * a * bx + a + bx), -6.0 * a * by,
-      2.0 * (a + bx - 2.0 * a * bx), by * (a - 1.0) }
-  {
-  }
+  ReflectionQuartic(double a, double bx, double by) { QuarticCoefficients(a, bx, by, this->c); }
   double operator()(double u, double& derivative) const
   {
     return detail::PolyEval(this->c, u, derivative);
@@ -513,13 +527,13 @@ void MirrorFrame::ReflectNear(
   // each other. The second lane of a last pair past n computes on zeros and is not used.
   n = std::max(0, std::min(n, kLanes));
   const int pairs = (n + kW - 1) / kW; // the pairs that hold a lane below n
-  const Lanes zero = Splat(0.0), one = Splat(1.0), two = Splat(2.0);
+  const Lanes zero = Splat(0.0), one = Splat(1.0);
   const Lanes cx = Splat(this->Centre.x()), cy = Splat(this->Centre.y()),
               cz = Splat(this->Centre.z());
   const Lanes e1x = Splat(this->E1.x()), e1y = Splat(this->E1.y()), e1z = Splat(this->E1.z());
   const Lanes a = Splat(this->A);
   Lanes bx[kPairs], by[kPairs], fx[kPairs], fy[kPairs], fz[kPairs], u[kPairs];
-  Lanes q0[kPairs], q1[kPairs], q2[kPairs], q3[kPairs], q4[kPairs];
+  Lanes q[kPairs][5];
   LaneMask ok[kPairs], converged[kPairs];
   for (int g = 0; g < pairs; ++g)
   {
@@ -563,12 +577,7 @@ void MirrorFrame::ReflectNear(
     const Lanes gn = Sqrt(gc * gc + gs * gs);
     ok[g] &= (gn > zero) & (gc > Splat(-0.5) * gn) & Finite(gn);
     u[g] = gs / (gn + gc);
-    // ReflectionQuartic's coefficients.
-    q0[g] = by[g] * (a + one);
-    q1[g] = two * (two * a * bx[g] + a + bx[g]);
-    q2[g] = Splat(-6.0) * a * by[g];
-    q3[g] = two * (a + bx[g] - two * a * bx[g]);
-    q4[g] = by[g] * (a - one);
+    QuarticCoefficients(a, bx[g], by[g], q[g]);
     converged[g] = used & ~used;
   }
 
@@ -584,17 +593,8 @@ void MirrorFrame::ReflectNear(
       {
         continue;
       }
-      // detail::PolyEval: Horner's rule for the value and the derivative.
-      Lanes p = q0[g], dp = zero;
-      dp = dp * u[g] + p;
-      p = p * u[g] + q1[g];
-      dp = dp * u[g] + p;
-      p = p * u[g] + q2[g];
-      dp = dp * u[g] + p;
-      p = p * u[g] + q3[g];
-      dp = dp * u[g] + p;
-      p = p * u[g] + q4[g];
-      const Lanes step = p / dp;
+      Lanes dp;
+      const Lanes step = PolyEval(q[g], u[g], dp) / dp;
       u[g] = Select(active, u[g] - step, u[g]);
       converged[g] |= active & (Abs(step) <= Splat(1e-9) * (one + Abs(u[g])));
       moving = moving || Any(ok[g] & ~converged[g]);
@@ -609,17 +609,12 @@ void MirrorFrame::ReflectNear(
   const Lanes r = Splat(this->Radius);
   for (int g = 0; g < pairs; ++g)
   {
-    const Lanes uu = u[g] * u[g];
-    const Lanes w = one / (one + uu);
-    const Lanes c = (one - uu) * w;
-    const Lanes sn = two * u[g] * w;
+    Lanes c, sn;
+    CircleAt(u[g], c, sn);
     const Lanes bn = bx[g] * c + by[g] * sn - one;
     const Lanes bt = by[g] * c - bx[g] * sn;
-    const Lanes an = a * c - one;
-    const Lanes at = -a * sn;
-    const LaneMask sees =
-      (an > zero) & (an * an > Splat(kGrazingCosine * kGrazingCosine) * (an * an + at * at));
-    const LaneMask good = ok[g] & converged[g] & (u[g] >= zero) & sees & (bn > zero) & (bt >= zero);
+    const LaneMask good =
+      ok[g] & converged[g] & (u[g] >= zero) & CameraSees(a, c, sn) & (bn > zero) & (bt >= zero);
     const Lanes mx = cx + r * (c * e1x + sn * fx[g]);
     const Lanes my = cy + r * (c * e1y + sn * fy[g]);
     const Lanes mz = cz + r * (c * e1z + sn * fz[g]);
