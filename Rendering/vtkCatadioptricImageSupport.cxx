@@ -83,7 +83,8 @@ void Widen(const unsigned char* in, vtkIdType b, vtkIdType e, unsigned char* out
 void vtkCatadioptricImageSupport::CopyFrame(
   const unsigned char* in, int nc, vtkIdType n, unsigned char* out)
 {
-  vtkCatadioptricParallel::For(0, n, 1, [&](vtkIdType b, vtkIdType e) { CopyFramePixels(in, nc, b, e, out); });
+  vtkCatadioptricParallel::For(
+    0, n, 1, [&](vtkIdType b, vtkIdType e) { CopyFramePixels(in, nc, b, e, out); });
 }
 
 void vtkCatadioptricImageSupport::CopyFramePixels(
@@ -108,7 +109,8 @@ void vtkCatadioptricImageSupport::CopyFramePixels(
 
 void vtkCatadioptricImageSupport::FillColor(const double rgba[4], vtkIdType n, unsigned char* out)
 {
-  vtkCatadioptricParallel::For(0, n, 1, [&](vtkIdType b, vtkIdType e) { FillColorPixels(rgba, b, e, out); });
+  vtkCatadioptricParallel::For(
+    0, n, 1, [&](vtkIdType b, vtkIdType e) { FillColorPixels(rgba, b, e, out); });
 }
 
 void vtkCatadioptricImageSupport::FillColorPixels(
