@@ -7,6 +7,7 @@
 // Exit status: 0 on success, 2 on a usage error, 1 when an image cannot be read or the two images
 // cannot be compared (different sizes).
 #include "Csv.h"
+#include "FileOutput.h"
 #include "ImageMetrics.h"
 
 #include <opencv2/core.hpp>
@@ -21,6 +22,7 @@
 #include <cstdlib>
 #include <exception>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -260,7 +262,7 @@ int main(int argc, char* argv[])
 
   if (!csvName.empty())
   {
-    std::ofstream csv(csvName);
+    std::ostringstream csv;
     csv << "a,b";
     for (const auto& row : rows)
     {
@@ -272,9 +274,10 @@ int main(int argc, char* argv[])
       csv << ',' << row.second;
     }
     csv << '\n';
-    if (!csv)
+    std::string error;
+    if (!catar::WriteWholeFile(csvName, csv.str(), error))
     {
-      std::fprintf(stderr, "catadioptric-compare: cannot write '%s'\n", csvName.c_str());
+      std::fprintf(stderr, "catadioptric-compare: cannot write the CSV: %s\n", error.c_str());
       return 1;
     }
   }
@@ -286,21 +289,28 @@ int main(int argc, char* argv[])
       catar::ImageView{ diff.ptr<std::uint8_t>(0), diff.cols, diff.rows,
         static_cast<std::ptrdiff_t>(diff.step[0]) });
     bool written = diffError.empty();
+    std::vector<uchar> bytes;
     if (written)
     {
       cv::cvtColor(diff, diff, cv::COLOR_RGBA2BGRA);
+      // Encoded in memory (the format follows the extension), then written with every error
+      // checked.
+      const size_t dot = diffName.find_last_of('.');
       try
       {
-        written = cv::imwrite(diffName, diff);
+        written = dot != std::string::npos && cv::imencode(diffName.substr(dot), diff, bytes);
       }
       catch (const cv::Exception&)
       {
         written = false;
       }
     }
-    if (!written)
+    std::string error = "cannot encode the image (is the extension an image format?)";
+    if (!written ||
+      !catar::WriteWholeFile(diffName, std::string(bytes.begin(), bytes.end()), error))
     {
-      std::fprintf(stderr, "catadioptric-compare: cannot write '%s'\n", diffName.c_str());
+      std::fprintf(
+        stderr, "catadioptric-compare: cannot write '%s': %s\n", diffName.c_str(), error.c_str());
       return 1;
     }
   }

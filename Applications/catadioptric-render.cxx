@@ -121,6 +121,12 @@ int main(int argc, char* argv[])
       renderer->GetCamera()->Modified();
     }
   }
+  if (renderer->GetNumberOfTriangles() == 0)
+  {
+    std::fprintf(stderr,
+      "catadioptric-render: warning: nothing to draw: the scene has no objects with triangles "
+      "(is 'objects' spelt right?); the image is the background alone\n");
+  }
   if (!renderer->WritePNG(outName.c_str()))
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());

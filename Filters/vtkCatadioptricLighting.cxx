@@ -8,6 +8,7 @@
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
+#include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricPointReader.h"
 #include "vtkCellArray.h"
@@ -338,6 +339,12 @@ int vtkCatadioptricLighting::RequestData(
   if (!input || !output)
   {
     vtkErrorMacro("Input and output must be vtkPolyData.");
+    return 0;
+  }
+  std::string inputError;
+  if (!vtkCatadioptricMeshCheck::Check(input, inputError))
+  {
+    vtkErrorMacro("Bad input mesh: " << inputError);
     return 0;
   }
   output->ShallowCopy(input);

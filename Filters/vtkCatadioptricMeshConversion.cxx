@@ -16,6 +16,7 @@
 #include "vtkStaticCellLocator.h"
 
 #include <cmath>
+#include <vector>
 
 void vtkCatadioptricMeshConversion::ToTriangleMesh(
   vtkPolyData* input, catar::mesh::TriangleMesh& mesh, std::vector<std::string>& warnings)
@@ -34,8 +35,13 @@ void vtkCatadioptricMeshConversion::ToTriangleMesh(
       std::to_string(input->GetNumberOfLines()) +
       " line cells ignored: only surfaces are remeshed");
   }
+  // Ids that name no point become -1 (the repair drops their triangles): a cast of a huge id
+  // to int could wrap to a point that exists.
+  const auto index = [nPoints](vtkIdType id) {
+    return id >= 0 && id < nPoints ? static_cast<int>(id) : -1;
+  };
   auto add = [&](vtkIdType a, vtkIdType b, vtkIdType c) {
-    mesh.triangles.push_back({ static_cast<int>(a), static_cast<int>(b), static_cast<int>(c) });
+    mesh.triangles.push_back({ index(a), index(b), index(c) });
   };
   vtkIdType nPolygons = 0;
   auto polys = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
@@ -168,14 +174,67 @@ void vtkCatadioptricMeshConversion::TransferCellData(vtkPolyData* input, vtkPoly
   {
     return;
   }
-  vtkNew<vtkStaticCellLocator> locator;
-  locator->SetDataSet(input);
-  locator->BuildLocator();
+  // The locator is built on the input cells that can be located: every id names a point and
+  // every point is finite (the repair dropped the others; a locator over them reads out of
+  // bounds). `source` maps them back to the input's cell ids.
+  const vtkIdType nPoints = input->GetNumberOfPoints();
+  std::vector<char> finite(static_cast<size_t>(nPoints));
+  for (vtkIdType i = 0; i < nPoints; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    finite[i] = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  }
+  vtkNew<vtkPolyData> located;
+  located->SetPoints(input->GetPoints());
+  // Cells keep their kind (vertices, lines, polygons, strips: the order vtkPolyData numbers
+  // them in, so the located cells' ids follow the input's).
+  vtkNew<vtkCellArray> cells[4];
+  std::vector<vtkIdType> source;
+  vtkNew<vtkIdList> ids;
+  const vtkIdType ends[4] = { input->GetNumberOfVerts(),
+    input->GetNumberOfVerts() + input->GetNumberOfLines(),
+    input->GetNumberOfVerts() + input->GetNumberOfLines() + input->GetNumberOfPolys(),
+    input->GetNumberOfCells() };
+  int kind = 0;
+  for (vtkIdType c = 0; c < input->GetNumberOfCells(); ++c)
+  {
+    while (c >= ends[kind])
+    {
+      ++kind;
+    }
+    input->GetCellPoints(c, ids);
+    bool ok = ids->GetNumberOfIds() > 0;
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds() && ok; ++k)
+    {
+      const vtkIdType p = ids->GetId(k);
+      ok = p >= 0 && p < nPoints && finite[p];
+    }
+    if (ok)
+    {
+      cells[kind]->InsertNextCell(ids);
+      source.push_back(c);
+    }
+  }
   vtkCellData* out = output->GetCellData();
   const vtkIdType nCells = output->GetNumberOfCells();
   out->CopyAllocate(in, nCells);
+  if (source.empty())
+  {
+    for (vtkIdType c = 0; c < nCells; ++c)
+    {
+      out->CopyData(in, vtkIdType(0), c);
+    }
+    return;
+  }
+  located->SetVerts(cells[0]);
+  located->SetLines(cells[1]);
+  located->SetPolys(cells[2]);
+  located->SetStrips(cells[3]);
+  vtkNew<vtkStaticCellLocator> locator;
+  locator->SetDataSet(located);
+  locator->BuildLocator();
   vtkNew<vtkGenericCell> cell;
-  vtkNew<vtkIdList> ids;
   for (vtkIdType c = 0; c < nCells; ++c)
   {
     output->GetCellPoints(c, ids);
@@ -193,6 +252,6 @@ void vtkCatadioptricMeshConversion::TransferCellData(vtkPolyData* input, vtkPoly
     vtkIdType cellId = -1;
     int subId;
     locator->FindClosestPoint(centroid, closest, cell, cellId, subId, dist2);
-    out->CopyData(in, cellId >= 0 ? cellId : 0, c);
+    out->CopyData(in, cellId >= 0 ? source[cellId] : source[0], c);
   }
 }

@@ -1,6 +1,7 @@
 #include "vtkCatadioptricPainterSort.h"
 
 #include "vtkCatadioptricDepthOrder.h"
+#include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -264,6 +265,12 @@ int vtkCatadioptricPainterSort::RequestData(
   if (!input || !output)
   {
     vtkErrorMacro("Input and output must be vtkPolyData.");
+    return 0;
+  }
+  std::string inputError;
+  if (!vtkCatadioptricMeshCheck::Check(input, inputError))
+  {
+    vtkErrorMacro("Bad input mesh: " << inputError);
     return 0;
   }
   const vtkIdType nCells = input->GetNumberOfCells();

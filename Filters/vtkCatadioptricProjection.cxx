@@ -4,6 +4,7 @@
 #include "SphereProjection.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricPointReader.h"
 #include "vtkCellArray.h"
@@ -224,6 +225,12 @@ int vtkCatadioptricProjection::RequestData(
   if (!input || !output)
   {
     vtkErrorMacro("Input and output must be vtkPolyData.");
+    return 0;
+  }
+  std::string inputError;
+  if (!vtkCatadioptricMeshCheck::Check(input, inputError))
+  {
+    vtkErrorMacro("Bad input mesh: " << inputError);
     return 0;
   }
   vtkCatadioptricCamera* camera = this->ResolveCamera();

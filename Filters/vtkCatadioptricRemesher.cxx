@@ -7,6 +7,7 @@
 #include "ScreenSpaceRemeshing.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricMeshConversion.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
@@ -96,6 +97,15 @@ int vtkCatadioptricRemesher::RequestData(
   {
     vtkErrorMacro("The input has no polygons or strips to remesh ("
       << input->GetNumberOfPoints() << " points, " << input->GetNumberOfCells() << " cells).");
+    return 0;
+  }
+
+  // Bad point ids and non-finite points are repaired; arrays shorter than what they describe
+  // cannot be.
+  std::string inputError;
+  if (!vtkCatadioptricMeshCheck::CheckArraySizes(input, inputError))
+  {
+    vtkErrorMacro("Bad input: " << inputError);
     return 0;
   }
 

@@ -1,10 +1,13 @@
 #include "CalibrationIO.h"
 
+#include "FileOutput.h"
 #include "FileStorageUtil.h"
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace catar
@@ -100,6 +103,191 @@ std::string String(const cv::FileNode& parent, const std::string& key, const std
     throw ParseError("'" + key + "' must be a string");
   }
   return static_cast<std::string>(n);
+}
+
+namespace
+{
+// Edit distance (insertions, deletions, substitutions), for key suggestions.
+std::size_t EditDistance(const std::string& a, const std::string& b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+  {
+    row[j] = j;
+  }
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      const std::size_t up = row[j];
+      row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1) });
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The deepest nesting of `text`: flow brackets ([ {) outside quotes and comments, plus the
+// levels of block indentation (a stack of increasing indents, "- " items counting as one more).
+int Nesting(const std::string& text)
+{
+  int deepest = 0;
+  int brackets = 0;
+  std::vector<std::size_t> indents;
+  std::size_t pos = 0;
+  while (pos < text.size())
+  {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos)
+    {
+      end = text.size();
+    }
+    // Block indentation of the line (blank and comment lines do not count).
+    std::size_t indent = pos;
+    while (indent < end && (text[indent] == ' ' || text[indent] == '-'))
+    {
+      ++indent;
+    }
+    if (indent < end && text[indent] != '#' && text[indent] != '\r' && brackets == 0)
+    {
+      const std::size_t column = indent - pos;
+      while (!indents.empty() && indents.back() > column)
+      {
+        indents.pop_back();
+      }
+      if (indents.empty() || indents.back() < column)
+      {
+        indents.push_back(column);
+      }
+    }
+    // "- - - x" nests sequences on one line.
+    int dashes = 0;
+    for (std::size_t k = pos; k < indent; ++k)
+    {
+      dashes += text[k] == '-';
+    }
+    char quote = 0;
+    for (std::size_t k = pos; k < end; ++k)
+    {
+      const char c = text[k];
+      if (quote)
+      {
+        quote = c == quote ? 0 : quote;
+      }
+      else if (c == '"' || c == '\'')
+      {
+        quote = c;
+      }
+      else if (c == '#')
+      {
+        break;
+      }
+      else if (c == '[' || c == '{')
+      {
+        deepest = std::max(deepest, static_cast<int>(indents.size()) + dashes + ++brackets);
+      }
+      else if ((c == ']' || c == '}') && brackets > 0)
+      {
+        --brackets;
+      }
+    }
+    deepest = std::max(deepest, static_cast<int>(indents.size()) + dashes);
+    pos = end + 1;
+  }
+  return deepest;
+}
+} // namespace
+
+void CheckKeys(const cv::FileNode& node, std::initializer_list<const char*> known)
+{
+  if (!node.isMap())
+  {
+    return;
+  }
+  for (const std::string& key : node.keys())
+  {
+    if (std::find_if(known.begin(), known.end(), [&](const char* k) { return key == k; }) !=
+      known.end())
+    {
+      continue;
+    }
+    std::string message = "unknown key '" + key + "'";
+    const char* nearest = nullptr;
+    std::size_t best = std::max<std::size_t>(2, key.size() / 3) + 1;
+    for (const char* k : known)
+    {
+      const std::size_t d = EditDistance(key, k);
+      if (d < best)
+      {
+        best = d;
+        nearest = k;
+      }
+    }
+    if (nearest)
+    {
+      message += std::string(" (did you mean '") + nearest + "'?)";
+    }
+    else
+    {
+      message += " (known keys:";
+      for (const char* k : known)
+      {
+        message += std::string(" ") + k;
+      }
+      message += ")";
+    }
+    throw ParseError(message);
+  }
+}
+
+bool OpenStorage(cv::FileStorage& storage, const std::string& source, bool isText,
+  const std::string& what, std::string& error)
+{
+  std::string text;
+  if (isText)
+  {
+    text = source;
+  }
+  else
+  {
+    std::ifstream in(source, std::ios::binary);
+    if (!in)
+    {
+      error = what + ": cannot open the file";
+      return false;
+    }
+    text.resize(kMaxTextBytes + 1);
+    in.read(&text[0], static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+  }
+  if (text.size() > kMaxTextBytes)
+  {
+    error = what + ": larger than the limit of " + std::to_string(kMaxTextBytes) + " bytes";
+    return false;
+  }
+  const int depth = Nesting(text);
+  if (depth > kMaxNesting)
+  {
+    error = what + ": nested " + std::to_string(depth) + " levels deep (at most " +
+      std::to_string(kMaxNesting) + ")";
+    return false;
+  }
+  try
+  {
+    if (!storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY))
+    {
+      error = what + ": cannot be parsed as YAML or JSON";
+      return false;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = what + ": not a valid YAML/JSON file (" + e.msg + ")";
+    return false;
+  }
+  return true;
 }
 
 void ReadCalibration(const cv::FileNode& node, CameraModel& m)
@@ -217,39 +405,15 @@ void WriteStorage(cv::FileStorage& out, const CameraModel& m)
 bool LoadCalibration(const std::string& path, CameraModel& model, std::string& error)
 {
   cv::FileStorage storage;
-  try
-  {
-    if (!storage.open(path, cv::FileStorage::READ))
-    {
-      error = path + ": cannot open the calibration file";
-      return false;
-    }
-  }
-  catch (const cv::Exception& e)
-  {
-    error = path + ": not a valid YAML/JSON file (" + e.msg + ")";
-    return false;
-  }
-  return ReadStorage(storage, path, model, error);
+  return fs::OpenStorage(storage, path, false, path, error) &&
+    ReadStorage(storage, path, model, error);
 }
 
 bool ParseCalibration(const std::string& text, CameraModel& model, std::string& error)
 {
   cv::FileStorage storage;
-  try
-  {
-    if (!storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY))
-    {
-      error = "calibration text: cannot be parsed";
-      return false;
-    }
-  }
-  catch (const cv::Exception& e)
-  {
-    error = "calibration text: not valid YAML/JSON (" + e.msg + ")";
-    return false;
-  }
-  return ReadStorage(storage, "calibration text", model, error);
+  return fs::OpenStorage(storage, text, true, "calibration text", error) &&
+    ReadStorage(storage, "calibration text", model, error);
 }
 
 bool SaveCalibration(const std::string& path, const CameraModel& model, std::string& error)
@@ -260,23 +424,30 @@ bool SaveCalibration(const std::string& path, const CameraModel& model, std::str
     error = "refusing to save an invalid camera: " + problem;
     return false;
   }
+  // Made in memory (the format follows the extension, as cv::FileStorage decides it), then
+  // written with every error checked: cv::FileStorage reports none of a full disk.
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  const bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const std::string ext = hasExt ? path.substr(dot) : std::string(".yaml");
+  std::string text;
   try
   {
-    cv::FileStorage out(path, cv::FileStorage::WRITE);
+    cv::FileStorage out(ext, cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
     if (!out.isOpened())
     {
-      error = path + ": cannot open for writing";
+      error = path + ": cannot write a calibration in this format (.yaml, .yml, .json, .xml)";
       return false;
     }
     WriteStorage(out, model);
-    out.release();
+    text = out.releaseAndGetString();
   }
   catch (const cv::Exception& e)
   {
     error = path + ": " + e.msg;
     return false;
   }
-  return true;
+  return WriteWholeFile(path, text, error);
 }
 
 std::string CalibrationToString(const CameraModel& model, bool json)

@@ -7,6 +7,7 @@
 
 #include <opencv2/core/persistence.hpp>
 
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,6 +32,22 @@ double Number(const cv::FileNode& parent, const std::string& key, double fallbac
 double Number(const cv::FileNode& parent, const std::string& key);
 /// A string, or `fallback` if absent.
 std::string String(const cv::FileNode& parent, const std::string& key, const std::string& fallback);
+
+/// Throws when the map `node` has a key not in `known`: "unknown key 'objetcs' (did you mean
+/// 'objects'?)" (the nearest known key within a few edits is suggested).
+void CheckKeys(const cv::FileNode& node, std::initializer_list<const char*> known);
+
+/// The largest YAML/JSON file read (16 MiB) and the deepest nesting of maps and sequences (64):
+/// the parser recurses once per level, and a file nested thousands deep would overflow its stack.
+constexpr std::size_t kMaxTextBytes = std::size_t(16) << 20;
+constexpr int kMaxNesting = 64;
+
+/// Opens YAML or JSON for reading: `source` is a file name, or the text itself when `isText`.
+/// The text is read whole (at most kMaxTextBytes) and its nesting checked (at most kMaxNesting
+/// levels of flow brackets and block indentation) before the parser sees it. On failure returns
+/// false with a sentence in `error` that starts with `what`.
+bool OpenStorage(cv::FileStorage& storage, const std::string& source, bool isText,
+  const std::string& what, std::string& error);
 
 /// Reads the calibration keys from a map node.
 void ReadCalibration(const cv::FileNode& node, CameraModel& model);

@@ -82,6 +82,14 @@ SceneRemesh ReadRemesh(const cv::FileNode& node, const SceneRemesh& fallback)
   {
     throw fs::ParseError("'remesh' must be 'none' or a map");
   }
+  try
+  {
+    fs::CheckKeys(node, { "target_area", "pixel_tolerance", "iterations", "feature_angle" });
+  }
+  catch (const fs::ParseError& e)
+  {
+    throw fs::ParseError(std::string("remesh: ") + e.what());
+  }
   const bool area = !node["target_area"].empty();
   const bool pixels = !node["pixel_tolerance"].empty();
   if (area && pixels)
@@ -131,6 +139,10 @@ SceneObject ReadObject(
   }
   try
   {
+    fs::CheckKeys(node,
+      { "name", "type", "file", "size", "radius", "tube_radius", "height", "resolution",
+        "translate", "rotate", "scale", "color", "opacity", "face_colors", "pattern",
+        "pattern_size", "texture", "remesh", "material" });
     SceneObject o;
     o.type = fs::String(node, "type", "");
     o.file = fs::String(node, "file", "");
@@ -213,6 +225,15 @@ SceneObject ReadObject(
       {
         throw fs::ParseError("'material' must be a map");
       }
+      try
+      {
+        fs::CheckKeys(
+          material, { "ambient", "diffuse", "specular", "specular_power", "specular_color" });
+      }
+      catch (const fs::ParseError& e)
+      {
+        throw fs::ParseError(std::string("material: ") + e.what());
+      }
       o.ambient = fs::Number(material, "ambient", o.ambient);
       o.diffuse = fs::Number(material, "diffuse", o.diffuse);
       o.specular = fs::Number(material, "specular", o.specular);
@@ -248,6 +269,9 @@ SceneLight ReadLight(const cv::FileNode& node, int index)
   }
   try
   {
+    fs::CheckKeys(node,
+      { "type", "position", "focal_point", "cone_angle", "exponent", "color", "ambient",
+        "intensity", "attenuation" });
     SceneLight l;
     l.type = fs::String(node, "type", l.type);
     if (l.type != "spot" && l.type != "point" && l.type != "directional")
@@ -301,6 +325,14 @@ SceneLighting ReadLighting(const cv::FileNode& node)
   {
     throw fs::ParseError("'lighting' must be a map");
   }
+  try
+  {
+    fs::CheckKeys(node, { "shading", "shadows", "global_ambient", "lights" });
+  }
+  catch (const fs::ParseError& e)
+  {
+    throw fs::ParseError(std::string("lighting: ") + e.what());
+  }
   lighting.shading = fs::String(node, "shading", "gouraud");
   if (lighting.shading != "none" && lighting.shading != "flat" && lighting.shading != "gouraud")
   {
@@ -327,6 +359,13 @@ SceneLighting ReadLighting(const cv::FileNode& node)
 void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescription& out)
 {
   SceneDescription scene;
+  if (!root.isMap())
+  {
+    throw fs::ParseError("a scene must be a map of keys (camera, output, objects, ...)");
+  }
+  fs::CheckKeys(root,
+    { "camera", "output", "solver", "cull_back_faces", "visibility", "background", "lighting",
+      "remesh", "objects" });
   const cv::FileNode cam = root["camera"];
   if (cam.isString())
   {
@@ -352,9 +391,25 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   {
     throw fs::ParseError("'camera' must name a calibration file or hold a calibration map");
   }
+  for (const char* key : { "output", "background", "lighting" })
+  {
+    const cv::FileNode n = root[key];
+    if (!n.empty() && !n.isNone() && !n.isMap())
+    {
+      throw fs::ParseError(std::string("'") + key + "' must be a map");
+    }
+  }
   const cv::FileNode output = root["output"];
   if (output.isMap())
   {
+    try
+    {
+      fs::CheckKeys(output, { "width", "height" });
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(std::string("output: ") + e.what());
+    }
     const double w = fs::Number(output, "width", 0);
     const double h = fs::Number(output, "height", 0);
     if (w < 0 || h < 0 || w > 1e5 || h > 1e5 || w != std::floor(w) || h != std::floor(h))
@@ -387,6 +442,14 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   const cv::FileNode bg = root["background"];
   if (bg.isMap())
   {
+    try
+    {
+      fs::CheckKeys(bg, { "type", "color", "image", "samples", "file", "rotation", "backdrop" });
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(std::string("background: ") + e.what());
+    }
     scene.background.type = fs::String(bg, "type", "environment");
     if (scene.background.type != "environment" && scene.background.type != "panorama" &&
       scene.background.type != "color" && scene.background.type != "image")
@@ -450,20 +513,8 @@ bool ParseStorage(cv::FileStorage& storage, const std::string& what, const std::
 bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error)
 {
   cv::FileStorage storage;
-  try
-  {
-    if (!storage.open(path, cv::FileStorage::READ))
-    {
-      error = path + ": cannot open the scene file";
-      return false;
-    }
-  }
-  catch (const cv::Exception& e)
-  {
-    error = path + ": not a valid YAML/JSON file (" + e.msg + ")";
-    return false;
-  }
-  if (!ParseStorage(storage, path, DirName(path), scene, error))
+  if (!fs::OpenStorage(storage, path, false, path, error) ||
+    !ParseStorage(storage, path, DirName(path), scene, error))
   {
     return false;
   }
@@ -475,20 +526,8 @@ bool ParseScene(
   const std::string& text, const std::string& baseDir, SceneDescription& scene, std::string& error)
 {
   cv::FileStorage storage;
-  try
-  {
-    if (!storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY))
-    {
-      error = "scene text: cannot be parsed";
-      return false;
-    }
-  }
-  catch (const cv::Exception& e)
-  {
-    error = "scene text: not valid YAML/JSON (" + e.msg + ")";
-    return false;
-  }
-  return ParseStorage(storage, "scene text", baseDir, scene, error);
+  return fs::OpenStorage(storage, text, true, "scene text", error) &&
+    ParseStorage(storage, "scene text", baseDir, scene, error);
 }
 
 const char* DemoSceneText()

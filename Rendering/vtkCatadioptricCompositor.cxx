@@ -5,6 +5,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricImageSupport.h"
+#include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricTriangleBins.h"
 #include "vtkCellData.h"
@@ -189,7 +190,17 @@ int vtkCatadioptricCompositor::RequestData(
   for (int m = 0; m < nMeshes; ++m)
   {
     vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
-    if (!mesh || mesh->GetNumberOfPoints() == 0)
+    if (!mesh)
+    {
+      continue;
+    }
+    std::string meshError;
+    if (!vtkCatadioptricMeshCheck::Check(mesh, meshError))
+    {
+      vtkErrorMacro("Mesh " << m << ": " << meshError);
+      return 0;
+    }
+    if (mesh->GetNumberOfPoints() == 0)
     {
       continue;
     }

@@ -4,10 +4,9 @@
 #include "SphereProjection.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
-#include "vtkImageReader2.h"
-#include "vtkImageReader2Factory.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -209,16 +208,13 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
     return true;
   }
   cache.Valid = false;
-  vtkSmartPointer<vtkImageReader2> reader;
-  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(name.c_str()));
-  if (!reader)
+  std::string readError;
+  vtkSmartPointer<vtkImageData> input = vtkCatadioptricImageSupport::ReadImageFile(name, readError);
+  if (!input)
   {
-    vtkErrorMacro("PanoramaFileName: '" << name << "' is not an image file VTK can read");
+    vtkErrorMacro("PanoramaFileName: " << readError);
     return false;
   }
-  reader->SetFileName(name.c_str());
-  reader->Update();
-  vtkImageData* input = reader->GetOutput();
   vtkDataArray* scalars = input ? input->GetPointData()->GetScalars() : nullptr;
   int dims[3] = { 0, 0, 0 };
   if (input)
@@ -226,7 +222,7 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
     input->GetDimensions(dims);
   }
   const int components = scalars ? scalars->GetNumberOfComponents() : 0;
-  if (reader->GetErrorCode() != 0 || !scalars || dims[0] < 1 || dims[1] < 1 ||
+  if (!scalars || dims[0] < 1 || dims[1] < 1 ||
     scalars->GetNumberOfTuples() < static_cast<vtkIdType>(dims[0]) * dims[1] || components < 1 ||
     components > 4)
   {

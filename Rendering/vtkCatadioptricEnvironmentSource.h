@@ -79,7 +79,7 @@ public:
   ///@}
 
   ///@{
-  /// PANORAMA mode: an equirectangular image file (any format vtkImageReader2Factory reads: PNG,
+  /// PANORAMA mode: an equirectangular image file (any format OpenCV's imread reads: PNG,
   /// JPEG, TIFF, BMP, ...; grey, RGB or RGBA, 8 or 16 bits; float images such as Radiance .hdr
   /// are tone-mapped with c / (1 + c) and gamma 2.2). It is read once and kept until the name or
   /// the file's modification time changes (after rewriting the file under the same name, call

@@ -9,10 +9,20 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include "vtkFloatArray.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 
 void vtkCatadioptricImageSupport::RequestWholeExtents(
   vtkInformationVector** inputVector, std::initializer_list<int> ports)
@@ -172,4 +182,81 @@ vtkDataArray* vtkCatadioptricImageSupport::TextureCoordinates(vtkPolyData* mesh)
     }
   }
   return (t && t->GetNumberOfComponents() >= 2) ? t : nullptr;
+}
+
+vtkSmartPointer<vtkImageData> vtkCatadioptricImageSupport::ReadImageFile(
+  const std::string& path, std::string& error)
+{
+  if (!std::ifstream(path).good())
+  {
+    error = "cannot open '" + path + "'";
+    return nullptr;
+  }
+  cv::Mat image;
+  try
+  {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "cannot read '" + path + "': " + e.msg;
+    return nullptr;
+  }
+  if (image.empty() || image.dims != 2)
+  {
+    error = "'" + path + "' is not an image file that can be read (truncated, corrupt, or an " +
+      "unknown format)";
+    return nullptr;
+  }
+  if (static_cast<long long>(image.cols) * image.rows > kMaxImagePixels)
+  {
+    error = "'" + path + "' is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+      " pixels, over the limit of " + std::to_string(kMaxImagePixels) + " pixels";
+    return nullptr;
+  }
+  const int channels = image.channels();
+  if (channels < 1 || channels > 4)
+  {
+    error = "'" + path + "' has " + std::to_string(channels) + " channels (1 to 4 are read)";
+    return nullptr;
+  }
+  // OpenCV's BGR(A) to RGB(A).
+  if (channels == 3)
+  {
+    cv::cvtColor(image, image, cv::COLOR_BGR2RGB);
+  }
+  else if (channels == 4)
+  {
+    cv::cvtColor(image, image, cv::COLOR_BGRA2RGBA);
+  }
+  vtkSmartPointer<vtkDataArray> scalars;
+  switch (image.depth())
+  {
+    case CV_8U:
+      scalars = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      break;
+    case CV_16U:
+      scalars = vtkSmartPointer<vtkUnsignedShortArray>::New();
+      break;
+    case CV_32F:
+      scalars = vtkSmartPointer<vtkFloatArray>::New();
+      break;
+    default:
+      image.convertTo(image, CV_32F);
+      scalars = vtkSmartPointer<vtkFloatArray>::New();
+  }
+  scalars->SetName("ImageFile");
+  scalars->SetNumberOfComponents(channels);
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(image.cols) * image.rows);
+  const size_t rowBytes = static_cast<size_t>(image.cols) * image.elemSize();
+  auto* out = static_cast<unsigned char*>(scalars->GetVoidPointer(0));
+  for (int j = 0; j < image.rows; ++j)
+  {
+    // VTK's row 0 is the bottom one.
+    std::memcpy(out + rowBytes * (image.rows - 1 - j), image.ptr(j), rowBytes);
+  }
+  auto result = vtkSmartPointer<vtkImageData>::New();
+  result->SetDimensions(image.cols, image.rows, 1);
+  result->GetPointData()->SetScalars(scalars);
+  return result;
 }

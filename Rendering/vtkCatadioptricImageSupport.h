@@ -18,8 +18,11 @@
 #include <vector>           // for std::vector
 
 class vtkDataArray;
+class vtkImageData;
 class vtkInformationVector;
 class vtkPolyData;
+template<class T>
+class vtkSmartPointer;
 
 class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricImageSupport
 {
@@ -49,6 +52,17 @@ public:
   /// components, row 0 at the bottom). False with `error` set when one is not such an image.
   static bool ReadTextures(vtkInformationVector* textures, bool repeat,
     std::vector<catar::TextureView>& views, std::string& error);
+
+  /// Reads an image file (PNG, JPEG, TIFF, BMP, PNM, Radiance HDR, ...: what OpenCV's imread
+  /// reads) into a 2D image of 1 to 4 components, row 0 at the bottom as VTK keeps it, RGB(A)
+  /// order. 8-bit images give unsigned char scalars, 16-bit unsigned short, HDR float.
+  /// Truncated or corrupt files are refused with a sentence in `error` (null returned): they go
+  /// through a decoder that reports errors, not VTK's readers, some of which crash on them.
+  /// Images over kMaxImagePixels are refused too.
+  static vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path, std::string& error);
+
+  /// The largest image ReadImageFile reads, in pixels (2^28: 16384 x 16384).
+  static constexpr long long kMaxImagePixels = 1LL << 28;
 
   /// The texture coordinates of a mesh: its active TCoords, else an array "TCoords" or
   /// "TextureCoordinates", with at least 2 components; null without.

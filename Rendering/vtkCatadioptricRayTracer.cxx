@@ -8,6 +8,7 @@
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricLightingSupport.h"
+#include "vtkCatadioptricMeshCheck.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -291,6 +292,12 @@ int vtkCatadioptricRayTracer::RequestData(
     {
       meshes.push_back(tm);
       continue;
+    }
+    std::string meshError;
+    if (!vtkCatadioptricMeshCheck::Check(mesh, meshError))
+    {
+      vtkErrorMacro("Mesh " << m << ": " << meshError);
+      return 0;
     }
     if (this->OutputVisibleTriangle && mesh->GetNumberOfCells() >= (vtkIdType(1) << 32))
     {

@@ -1,12 +1,15 @@
 #include "vtkCatadioptricSceneObjects.h"
 
+#include "MeshFileCheck.h"
 #include "SceneDescription.h"
 
 #include <Eigen/Geometry>
 
-#include "vtkCatadioptricCamera.h"
-#include "vtkCatadioptricRemesher.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricImageSupport.h"
+#include "vtkCatadioptricMeshCheck.h"
+#include "vtkCatadioptricRemesher.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkCylinderSource.h"
@@ -14,8 +17,6 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkImageReader2.h"
-#include "vtkImageReader2Factory.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
@@ -49,6 +50,20 @@
 
 namespace
 {
+// Collects the error messages an algorithm reports.
+struct ErrorCollector
+{
+  std::string Messages;
+  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    auto* self = static_cast<ErrorCollector*>(clientData);
+    if (callData)
+    {
+      self->Messages += static_cast<const char*>(callData);
+    }
+  }
+};
+
 vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& file)
 {
   if (!vtksys::SystemTools::FileExists(file, true))
@@ -93,11 +108,33 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& file)
     throw std::runtime_error(
       "unsupported mesh format '" + ext + "' (ply, obj, stl, vtp, vtk): " + file);
   }
+  // Counts the header announces are checked against the file first (some readers trust them),
+  // the reader's errors are collected, and the mesh it made is checked before any filter reads
+  // it through its point ids.
+  std::string error;
+  if (!catar::CheckMeshFile(file, error))
+  {
+    throw std::runtime_error(error);
+  }
+  ErrorCollector errors;
+  vtkNew<vtkCallbackCommand> callback;
+  callback->SetCallback(&ErrorCollector::Callback);
+  callback->SetClientData(&errors);
+  reader->AddObserver(vtkCommand::ErrorEvent, callback);
   reader->Update();
   vtkSmartPointer<vtkPolyData> out = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (reader->GetErrorCode() != 0 || !errors.Messages.empty())
+  {
+    throw std::runtime_error("cannot read " + file + ": " +
+      (errors.Messages.empty() ? std::string("reader error") : errors.Messages));
+  }
   if (!out || out->GetNumberOfPolys() + out->GetNumberOfStrips() == 0)
   {
     throw std::runtime_error("no surface read from " + file);
+  }
+  if (!vtkCatadioptricMeshCheck::Check(out, error))
+  {
+    throw std::runtime_error(file + ": " + error);
   }
   return out;
 }
@@ -300,16 +337,13 @@ vtkSmartPointer<vtkImageData> ReadTexture(const std::string& file)
   {
     return CheckerTexture();
   }
-  vtkSmartPointer<vtkImageReader2> reader;
-  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(file.c_str()));
-  if (!reader)
+  std::string error;
+  vtkSmartPointer<vtkImageData> image = vtkCatadioptricImageSupport::ReadImageFile(file, error);
+  if (!image)
   {
-    throw std::runtime_error("texture image cannot be read: " + file);
+    throw std::runtime_error("texture: " + error);
   }
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
-  vtkDataArray* s = image ? image->GetPointData()->GetScalars() : nullptr;
+  vtkDataArray* s = image->GetPointData()->GetScalars();
   if (!s || s->GetDataType() != VTK_UNSIGNED_CHAR)
   {
     throw std::runtime_error("texture must be an 8-bit image: " + file);
@@ -364,20 +398,6 @@ vtkSmartPointer<vtkPolyData> BuildObject(const catar::SceneObject& o)
   out->ShallowCopy(xf->GetOutput());
   return out;
 }
-// Collects the error messages an algorithm reports.
-struct ErrorCollector
-{
-  std::string Messages;
-  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
-  {
-    auto* self = static_cast<ErrorCollector*>(clientData);
-    if (callData)
-    {
-      self->Messages += static_cast<const char*>(callData);
-    }
-  }
-};
-
 /// Collects warnings (repairs made) as short lines, without VTK's prefix, instead of printing
 /// them: the scene's remeshing report lists them.
 struct WarningCollector

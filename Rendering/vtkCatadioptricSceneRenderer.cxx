@@ -1,29 +1,31 @@
 #include "vtkCatadioptricSceneRenderer.h"
 
+#include "FileOutput.h"
 #include "SceneDescription.h"
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricSceneObjects.h"
-#include "vtkFieldData.h"
-#include "vtkIntArray.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
-#include "vtkImageReader2.h"
-#include "vtkImageReader2Factory.h"
+#include "vtkIntArray.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkProperty.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkProperty.h"
 #include "vtkSmartPointer.h"
+#include "vtkTrivialProducer.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
@@ -61,7 +63,7 @@ struct vtkCatadioptricSceneRenderer::Internals
   double Times[kNumberOfStages] = { 0, 0, 0, 0, 0, 0, 0 };
   vtkIdType Triangles = 0;
   vtkNew<vtkCatadioptricCamera> Camera;
-  vtkSmartPointer<vtkAlgorithm> Background; // environment source or image reader; may be null
+  vtkSmartPointer<vtkAlgorithm> Background; // environment source or the image read; may be null
   vtkNew<vtkLightCollection> Lights;
   std::vector<vtkSmartPointer<vtkCatadioptricProjection>> Projections;
   std::vector<vtkSmartPointer<vtkCatadioptricLighting>> Lightings;
@@ -272,16 +274,18 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   }
   else if (bg.type == "image")
   {
-    vtkSmartPointer<vtkImageReader2> reader;
-    reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(bg.image.c_str()));
-    if (!reader)
+    std::string readError;
+    vtkSmartPointer<vtkImageData> image =
+      vtkCatadioptricImageSupport::ReadImageFile(bg.image, readError);
+    if (!image)
     {
-      in.Error = "background image cannot be read: " + bg.image;
+      in.Error = "background: 'image': " + readError;
       vtkErrorMacro(<< in.Error);
       return false;
     }
-    reader->SetFileName(bg.image.c_str());
-    in.Background = reader;
+    auto producer = vtkSmartPointer<vtkTrivialProducer>::New();
+    producer->SetOutput(image);
+    in.Background = producer;
   }
   else
   {
@@ -391,17 +395,34 @@ bool vtkCatadioptricSceneRenderer::WritePNG(const char* fileName)
     vtkErrorMacro(<< this->Internal->Error);
     return false;
   }
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(fileName);
-  writer->SetInputData(image);
-  writer->Write();
-  if (writer->GetErrorCode() != 0)
+  if (!fileName || !*fileName)
   {
-    this->Internal->Error = std::string("cannot write ") + fileName;
+    this->Internal->Error = "no output file name given";
     vtkErrorMacro(<< this->Internal->Error);
     return false;
   }
-  return true;
+  // Encoded in memory, then written with every error checked (vtkPNGWriter reports no full
+  // disk).
+  vtkNew<vtkPNGWriter> writer;
+  writer->WriteToMemoryOn();
+  writer->SetInputData(image);
+  writer->Write();
+  vtkUnsignedCharArray* png = writer->GetResult();
+  std::string error;
+  if (writer->GetErrorCode() != 0 || !png || png->GetNumberOfValues() == 0)
+  {
+    error = std::string(fileName) + ": the image could not be encoded as PNG";
+  }
+  else if (catar::WriteWholeFile(fileName,
+             std::string(reinterpret_cast<const char*>(png->GetPointer(0)),
+               static_cast<size_t>(png->GetNumberOfValues())),
+             error))
+  {
+    return true;
+  }
+  this->Internal->Error = error;
+  vtkErrorMacro(<< this->Internal->Error);
+  return false;
 }
 
 vtkCatadioptricCamera* vtkCatadioptricSceneRenderer::GetCamera()

@@ -1,0 +1,35 @@
+// CatadioptricAR Core: checks of mesh files before a reader sees them. Some of VTK's readers
+// trust the counts a file's header gives (a PLY that announces 10^9 vertices in 300 bytes makes
+// vtkPLYReader reserve gigabytes, read past the end, or abort): the counts are checked against
+// what the file can hold first, so that such files end with a sentence, not a crash.
+#ifndef catarMeshFileCheck_h
+#define catarMeshFileCheck_h
+
+#include <cstdint>
+#include <string>
+
+namespace catar
+{
+/// The largest mesh file read, in bytes (2 GiB).
+constexpr std::uint64_t kMaxMeshFileBytes = std::uint64_t(1) << 31;
+
+/// Checks the header of a PLY file (ASCII or binary): its syntax, and that the elements it
+/// announces fit in the bytes that follow it (each binary element takes at least the sizes of
+/// its properties, each ASCII element at least one line). False with a sentence in `error`.
+bool CheckPlyFile(const std::string& path, std::string& error);
+
+/// Checks the counts of a legacy VTK file's sections (POINTS, VERTICES, LINES, POLYGONS,
+/// TRIANGLE_STRIPS, POINT_DATA, CELL_DATA): none may announce more values than the file has
+/// bytes.
+bool CheckLegacyVtkFile(const std::string& path, std::string& error);
+
+/// Checks a binary STL file's triangle count against its size (84 + 50 bytes a triangle); ASCII
+/// STL files pass.
+bool CheckStlFile(const std::string& path, std::string& error);
+
+/// The check for a file by its extension (.ply, .vtk, .stl; other files only against
+/// kMaxMeshFileBytes). False with a sentence in `error`.
+bool CheckMeshFile(const std::string& path, std::string& error);
+} // namespace catar
+
+#endif
