@@ -251,7 +251,8 @@ bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
     this->LastError = "field data holds no camera (run vtkCatadioptricProjection first)";
     return false;
   }
-  if (intr[5] < 1 || intr[6] < 1 || intr[5] > 100000 || intr[6] > 100000)
+  if (!(intr[5] >= 1 && intr[6] >= 1 && intr[5] <= catar::kMaxImageSide &&
+        intr[6] <= catar::kMaxImageSide))
   {
     this->LastError = "field data camera has an invalid image size";
     return false;

@@ -51,10 +51,10 @@ public:
   static const char* GetStatusName(int status);
 
   ///@{
-  /// Image size in pixels.
-  vtkSetClampMacro(ImageWidth, int, 1, 100000);
+  /// Image size in pixels: at most 32768 a side (clamped) and 2^28 pixels in all (IsValid()).
+  vtkSetClampMacro(ImageWidth, int, 1, 32768);
   vtkGetMacro(ImageWidth, int);
-  vtkSetClampMacro(ImageHeight, int, 1, 100000);
+  vtkSetClampMacro(ImageHeight, int, 1, 32768);
   vtkGetMacro(ImageHeight, int);
   ///@}
 

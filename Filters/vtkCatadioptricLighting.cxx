@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 #include <vector>
 
@@ -136,6 +137,41 @@ private:
   float Alpha[W];
   unsigned char* Out[W];
 };
+} // namespace
+
+namespace
+{
+// Whether one of n normals (read through the raw pointer of their type when given) has zero
+// length or a NaN or infinite component.
+bool HasDegenerateNormal(
+  vtkDataArray* normals, const float* floats, const double* doubles, vtkIdType n)
+{
+  auto bad = [](double x, double y, double z) {
+    const double q = x * x + y * y + z * z;
+    return !(q > 0.0 && q < std::numeric_limits<double>::infinity());
+  };
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double t[3];
+    if (floats)
+    {
+      std::copy(floats + 3 * i, floats + 3 * i + 3, t);
+    }
+    else if (doubles)
+    {
+      std::copy(doubles + 3 * i, doubles + 3 * i + 3, t);
+    }
+    else
+    {
+      normals->GetTuple(i, t);
+    }
+    if (bad(t[0], t[1], t[2]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
 } // namespace
 
 struct vtkCatadioptricLighting::Internals
@@ -378,9 +414,18 @@ int vtkCatadioptricLighting::RequestData(
     static_cast<float>(prop->GetDiffuseColor()[1]), static_cast<float>(prop->GetDiffuseColor()[2]),
     1.0f };
   const vtkCatadioptricColorArray base(input, this->InputColorArrayName, solid);
-  const catar::LightSet lights(vtkCatadioptricLightingSupport::ConvertLights(this->Lights));
+  const std::vector<catar::LightSource> lightList =
+    vtkCatadioptricLightingSupport::ConvertLights(this->Lights);
   const catar::Vec3 globalAmbient = V3(this->GlobalAmbient);
   const int mode = this->ShadingMode;
+  const std::string lightingError = catar::ValidateLighting(
+    lightList, material, globalAmbient, prop->GetAmbient(), prop->GetDiffuse(), opacity);
+  if (!lightingError.empty())
+  {
+    vtkErrorMacro("Cannot shade: " << lightingError << ".");
+    return 0;
+  }
+  const catar::LightSet lights(lightList);
 
   // Shadows: the mesh's own triangles.
   const bool shadows = this->Shadows && mode != NONE && !lights.empty();
@@ -473,6 +518,11 @@ int vtkCatadioptricLighting::RequestData(
     auto* normalDoubleArray = normals.empty() ? vtkDoubleArray::SafeDownCast(inNormals) : nullptr;
     const float* normalFloats = normalFloatArray ? normalFloatArray->GetPointer(0) : nullptr;
     const double* normalDoubles = normalDoubleArray ? normalDoubleArray->GetPointer(0) : nullptr;
+    // Given normals of zero length or with NaN or Inf take the mesh's own vertex normal.
+    const std::vector<catar::Vec3>* fallback =
+      normals.empty() && HasDegenerateNormal(inNormals, normalFloats, normalDoubles, nPts)
+      ? &this->Internal->GetNormals(input)
+      : nullptr;
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
       ShadeBatch batch(shading);
       for (vtkIdType i = b; i < e; ++i)
@@ -511,6 +561,10 @@ int vtkCatadioptricLighting::RequestData(
         else
         {
           n = normals[i];
+        }
+        if (fallback && !(n.squaredNorm() > 0.0))
+        {
+          n = (*fallback)[i];
         }
         float rgba[4];
         if (pointBase.empty())

@@ -299,9 +299,15 @@ void ReadCalibration(const cv::FileNode& node, CameraModel& m)
   CameraModel model;
   const double w = Number(node, "image_width");
   const double h = Number(node, "image_height");
-  if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > 1e5 || h > 1e5)
+  if (!(w == std::floor(w) && h == std::floor(h) && w >= 1 && h >= 1))
   {
     throw ParseError("'image_width' and 'image_height' must be positive integers");
+  }
+  if (w > kMaxImageSide || h > kMaxImageSide || w * h > static_cast<double>(kMaxImagePixels))
+  {
+    throw ParseError("'image_width' x 'image_height' is over the limit of " +
+      std::to_string(kMaxImageSide) + " pixels a side and " + std::to_string(kMaxImagePixels) +
+      " pixels");
   }
   model.intrinsics.width = static_cast<int>(w);
   model.intrinsics.height = static_cast<int>(h);

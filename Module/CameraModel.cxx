@@ -45,6 +45,12 @@ std::string CameraModel::Validate() const
   {
     err << "image size must be positive (" << in.width << "x" << in.height << ")";
   }
+  else if (in.width > kMaxImageSide || in.height > kMaxImageSide ||
+    static_cast<long long>(in.width) * in.height > kMaxImagePixels)
+  {
+    err << "image size " << in.width << "x" << in.height << " is over the limit (at most "
+        << kMaxImageSide << " pixels a side and " << kMaxImagePixels << " pixels)";
+  }
   else if (!(finite(d.k1) && finite(d.k2) && finite(d.p1) && finite(d.p2) && finite(d.k3)))
   {
     err << "distortion coefficients contain NaN or Inf";

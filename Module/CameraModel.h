@@ -22,6 +22,12 @@ using Mat3 = Eigen::Matrix3d;
 using Mat4 = Eigen::Matrix4d;
 
 /// Pinhole intrinsics and image size in pixels.
+/// The largest image: at most kMaxImageSide pixels a side and kMaxImagePixels in all (2^28, a
+/// 1 GiB RGBA frame). Larger sizes are refused where they enter (calibration and scene files,
+/// the camera's setters, field data), never left to fail in an allocation.
+constexpr int kMaxImageSide = 32768;
+constexpr long long kMaxImagePixels = 1LL << 28;
+
 struct Intrinsics
 {
   double fx = 800.0;

@@ -1,5 +1,6 @@
 #include "Environment.h"
 
+#include "SafeCast.h"
 #include "SphereProjection.h"
 
 #include <algorithm>
@@ -89,8 +90,8 @@ Vec3 RoomColor(const RoomEnvironment& room, const Vec3& origin, const Vec3& d)
   {
     case 4: // floor: checker
     {
-      const long i = static_cast<long>(std::floor(p.x() / room.floorTile));
-      const long j = static_cast<long>(std::floor(p.y() / room.floorTile));
+      const long long i = FloorToInteger(p.x() / room.floorTile);
+      const long long j = FloorToInteger(p.y() / room.floorTile);
       if (OnGrid(p.x(), room.floorTile, 0.006) || OnGrid(p.y(), room.floorTile, 0.006))
       {
         return Vec3(0.15, 0.13, 0.12);
@@ -225,9 +226,13 @@ Vec3 PanoramaColor(const EquirectangularPanorama& panorama, const Vec3& worldDir
   const int h = panorama.height;
   const Vec2 p = PanoramaPixel(w, h, worldDirection);
   // Longitude wraps: columns i0 and i0 + 1 modulo the width.
+  if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+  {
+    return Vec3::Zero();
+  }
   const double fx = std::floor(p.x());
   const double tx = p.x() - fx;
-  int i0 = static_cast<int>(fx) % w;
+  int i0 = static_cast<int>(FloorToInteger(p.x()) % w);
   if (i0 < 0)
   {
     i0 += w;

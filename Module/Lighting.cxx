@@ -203,4 +203,33 @@ void ShadeMany(int count, const Vec3* p, const Vec3* normal, const Vec3* viewer,
     out[i] = color[i].cwiseMax(0.0).cwiseMin(1.0);
   }
 }
+std::string ValidateLighting(const std::vector<LightSource>& lights, const Material& material,
+  const Vec3& globalAmbient, double ambientFactor, double diffuseFactor, double opacity)
+{
+  for (std::size_t k = 0; k < lights.size(); ++k)
+  {
+    const LightSource& l = lights[k];
+    if (!(l.position.allFinite() && l.focalPoint.allFinite() && l.ambient.allFinite() &&
+          l.diffuse.allFinite() && l.specular.allFinite() && std::isfinite(l.coneAngle) &&
+          std::isfinite(l.exponent) && l.attenuation.allFinite()))
+    {
+      return "light " + std::to_string(k) +
+        " has a NaN or infinite position, focal point, colour, intensity, cone angle, exponent "
+        "or attenuation";
+    }
+  }
+  if (!(material.ambient.allFinite() && material.diffuse.allFinite() &&
+        material.specular.allFinite() && material.emission.allFinite() &&
+        std::isfinite(material.shininess) && std::isfinite(ambientFactor) &&
+        std::isfinite(diffuseFactor) && std::isfinite(opacity)))
+  {
+    return "the material (colours, ambient, diffuse, specular, specular power, emission or "
+           "opacity) has a NaN or infinite value";
+  }
+  if (!globalAmbient.allFinite())
+  {
+    return "the global ambient colour has a NaN or infinite value";
+  }
+  return "";
+}
 } // namespace catar

@@ -22,6 +22,7 @@
 #include "CameraModel.h"
 
 #include <initializer_list>
+#include <string>
 #include <vector>
 
 namespace catar
@@ -59,6 +60,12 @@ struct Material
 /// Unit vector from p towards the light (for a directional light, the direction it comes from),
 /// and the distance to it (infinity for a directional light).
 Vec3 DirectionToLight(const LightSource& light, const Vec3& p, double* distance = nullptr);
+
+/// Why these lights, material, global ambient and material factors (ambient, diffuse, opacity)
+/// cannot be shaded with: a NaN or infinite value (which would turn every colour black or
+/// flat), naming which; "" when they can.
+std::string ValidateLighting(const std::vector<LightSource>& lights, const Material& material,
+  const Vec3& globalAmbient, double ambientFactor, double diffuseFactor, double opacity);
 
 /// att_k: 1 / (c + l d + q d^2) for lights with a position, 1 for directional lights.
 double Attenuation(const LightSource& light, double distance);

@@ -64,6 +64,13 @@ bool RayScene::Build(const std::vector<float>& points, const std::vector<std::ui
       this->Error = "vertex coordinates contain NaN or Inf";
       return false;
     }
+    // Embree's bounds arithmetic (single precision) overflows and aborts on larger ones.
+    if (std::abs(v) > kMaxCoordinate)
+    {
+      this->Error = "vertex coordinates beyond +-1e12 cannot be ray traced (a coordinate is " +
+        std::to_string(v) + ")";
+      return false;
+    }
   }
   Internals& in = *this->Internal;
   in.Device = rtcNewDevice("threads=1,verbose=0");

@@ -24,8 +24,13 @@ public:
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
 
+  /// The largest coordinate a scene may have (1e12, in any unit): Embree works in single
+  /// precision and aborts on bounds that overflow it.
+  static constexpr float kMaxCoordinate = 1e12f;
+
   /// Builds the acceleration structure. `points` holds x y z per vertex, `triangles` three vertex
-  /// indices per triangle. Returns false (and says why in GetError()) on failure; degenerate
+  /// indices per triangle. Returns false (and says why in GetError()) on failure
+  /// (ids out of range, NaN or Inf coordinates, coordinates beyond kMaxCoordinate); degenerate
   /// triangles are allowed (Embree skips them). An empty mesh builds an empty scene.
   bool Build(const std::vector<float>& points, const std::vector<std::uint32_t>& triangles);
 

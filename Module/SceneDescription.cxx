@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -184,6 +185,15 @@ SceneObject ReadObject(
       throw fs::ParseError("'resolution' must be an integer in [1, 4096]");
     }
     o.resolution = static_cast<int>(res);
+    const double triangles = ProceduralTriangles(o.type, o.resolution);
+    if (triangles > kMaxObjectTriangles)
+    {
+      std::ostringstream s;
+      s << "'resolution' " << o.resolution << " makes a " << o.type << " of about "
+        << static_cast<long long>(triangles) << " triangles, over the limit of "
+        << static_cast<long long>(kMaxObjectTriangles);
+      throw fs::ParseError(s.str());
+    }
     if ((o.size.array() <= 0.0).any() || !(o.radius > 0) || !(o.tubeRadius > 0) || !(o.height > 0))
     {
       throw fs::ParseError("sizes and radii must be positive");
@@ -412,9 +422,15 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
     }
     const double w = fs::Number(output, "width", 0);
     const double h = fs::Number(output, "height", 0);
-    if (w < 0 || h < 0 || w > 1e5 || h > 1e5 || w != std::floor(w) || h != std::floor(h))
+    if (!(w >= 0 && h >= 0 && w == std::floor(w) && h == std::floor(h)))
     {
       throw fs::ParseError("output: width and height must be positive integers");
+    }
+    if (w > kMaxImageSide || h > kMaxImageSide || w * h > static_cast<double>(kMaxImagePixels))
+    {
+      throw fs::ParseError("output: width x height is over the limit of " +
+        std::to_string(kMaxImageSide) + " pixels a side and " + std::to_string(kMaxImagePixels) +
+        " pixels");
     }
     scene.width = static_cast<int>(w);
     scene.height = static_cast<int>(h);
@@ -509,6 +525,34 @@ bool ParseStorage(cv::FileStorage& storage, const std::string& what, const std::
   }
 }
 } // namespace
+
+double ProceduralTriangles(const std::string& type, int resolution)
+{
+  // As vtkCatadioptricSceneObjects builds them: a box of res x res squares a face, a sphere of
+  // 2 res x res, a torus of res x res / 2 quads, a cylinder of res sides, a plane of res x res.
+  const double r = std::max(3, resolution);
+  if (type == "box")
+  {
+    return 12.0 * resolution * resolution;
+  }
+  if (type == "sphere")
+  {
+    return 4.0 * r * r;
+  }
+  if (type == "torus")
+  {
+    return r * r;
+  }
+  if (type == "cylinder")
+  {
+    return 4.0 * r;
+  }
+  if (type == "plane")
+  {
+    return 2.0 * resolution * resolution;
+  }
+  return 0.0;
+}
 
 bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error)
 {

@@ -25,6 +25,13 @@ struct SceneRemesh
   double featureAngle = 60.0; ///< degrees: sharper edges are kept
 };
 
+/// The most triangles a procedural object may have (its `resolution` is checked against it
+/// before anything is built): 2^24.
+constexpr double kMaxObjectTriangles = 16777216.0;
+
+/// About how many triangles a procedural object of this type and resolution has (0 for "mesh").
+double ProceduralTriangles(const std::string& type, int resolution);
+
 /// One object of a scene.
 struct SceneObject
 {

@@ -1,5 +1,6 @@
 #include "vtkCatadioptricCompositor.h"
 
+#include "CameraModel.h"
 #include "Rasterizer.h"
 
 #include "vtkCatadioptricCamera.h"
@@ -265,6 +266,14 @@ int vtkCatadioptricCompositor::RequestData(
     vtkErrorMacro("No image size: connect a frame, a projected mesh, or set ImageSize.");
     return 0;
   }
+  if (width > catar::kMaxImageSide || height > catar::kMaxImageSide ||
+    static_cast<long long>(width) * height > catar::kMaxImagePixels)
+  {
+    vtkErrorMacro("The image size " << width << "x" << height << " is over the limit of "
+                                    << catar::kMaxImageSide << " pixels a side and "
+                                    << catar::kMaxImagePixels << " pixels.");
+    return 0;
+  }
   this->LastSize[0] = width;
   this->LastSize[1] = height;
 
@@ -390,9 +399,10 @@ int vtkCatadioptricCompositor::RequestData(
     if (in.TCoords)
     {
       in.Texture = 0;
-      if (vtkDataArray* index = mesh->GetFieldData()->GetArray("TextureIndex"))
+      if (!vtkCatadioptricImageSupport::TextureIndex(mesh, in.Texture, textureError))
       {
-        in.Texture = static_cast<int>(index->GetComponent(0, 0));
+        vtkErrorMacro("Mesh " << m << ": " << textureError);
+        return 0;
       }
       if (in.Texture < 0)
       {

@@ -279,6 +279,20 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
   return true;
 }
 
+void vtkCatadioptricEnvironmentSource::SetPanoramaRotation(double degrees)
+{
+  if (!std::isfinite(degrees))
+  {
+    vtkErrorMacro("PanoramaRotation must be a finite number of degrees, not " << degrees << ".");
+    return;
+  }
+  if (this->PanoramaRotation != degrees)
+  {
+    this->PanoramaRotation = degrees;
+    this->Modified();
+  }
+}
+
 void vtkCatadioptricEnvironmentSource::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

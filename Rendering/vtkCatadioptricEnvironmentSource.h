@@ -92,8 +92,9 @@ public:
 
   ///@{
   /// PANORAMA mode: rotation of the panorama about the world +z axis, degrees (its middle column
-  /// then looks along longitude PanoramaRotation, counter-clockwise from +x). Default 0.
-  vtkSetMacro(PanoramaRotation, double);
+  /// then looks along longitude PanoramaRotation, counter-clockwise from +x). Default 0. NaN and
+  /// infinite values are refused (an error; the rotation is left as it was).
+  virtual void SetPanoramaRotation(double degrees);
   vtkGetMacro(PanoramaRotation, double);
   ///@}
 

@@ -1,7 +1,10 @@
 #include "vtkCatadioptricImageSupport.h"
 
+#include "CameraModel.h"
+
 #include "vtkCatadioptricParallel.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -208,10 +211,10 @@ vtkSmartPointer<vtkImageData> vtkCatadioptricImageSupport::ReadImageFile(
       "unknown format)";
     return nullptr;
   }
-  if (static_cast<long long>(image.cols) * image.rows > kMaxImagePixels)
+  if (static_cast<long long>(image.cols) * image.rows > catar::kMaxImagePixels)
   {
     error = "'" + path + "' is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-      " pixels, over the limit of " + std::to_string(kMaxImagePixels) + " pixels";
+      " pixels, over the limit of " + std::to_string(catar::kMaxImagePixels) + " pixels";
     return nullptr;
   }
   const int channels = image.channels();
@@ -259,4 +262,27 @@ vtkSmartPointer<vtkImageData> vtkCatadioptricImageSupport::ReadImageFile(
   result->SetDimensions(image.cols, image.rows, 1);
   result->GetPointData()->SetScalars(scalars);
   return result;
+}
+
+bool vtkCatadioptricImageSupport::TextureIndex(vtkPolyData* mesh, int& index, std::string& error)
+{
+  index = 0;
+  vtkDataArray* array = mesh->GetFieldData()->GetArray("TextureIndex");
+  if (!array)
+  {
+    return true;
+  }
+  if (array->GetNumberOfTuples() < 1 || array->GetNumberOfComponents() < 1)
+  {
+    error = "the field data array TextureIndex is empty (give one integer, -1 for no texture).";
+    return false;
+  }
+  const double v = array->GetComponent(0, 0);
+  if (!(v == std::floor(v) && v >= -2147483648.0 && v <= 2147483647.0))
+  {
+    error = "the field data array TextureIndex holds " + std::to_string(v) + ", not an integer.";
+    return false;
+  }
+  index = static_cast<int>(v);
+  return true;
 }

@@ -58,11 +58,13 @@ public:
   /// order. 8-bit images give unsigned char scalars, 16-bit unsigned short, HDR float.
   /// Truncated or corrupt files are refused with a sentence in `error` (null returned): they go
   /// through a decoder that reports errors, not VTK's readers, some of which crash on them.
-  /// Images over kMaxImagePixels are refused too.
+  /// Images over catar::kMaxImagePixels (CameraModel.h) are refused too.
   static vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path, std::string& error);
 
-  /// The largest image ReadImageFile reads, in pixels (2^28: 16384 x 16384).
-  static constexpr long long kMaxImagePixels = 1LL << 28;
+  /// The texture a mesh names in its field data array TextureIndex (one integer; negative:
+  /// untextured), 0 without the array. False with a sentence in `error` when the array is empty
+  /// or its value is not an integer in the int range (NaN, 1e30, 2.5).
+  static bool TextureIndex(vtkPolyData* mesh, int& index, std::string& error);
 
   /// The texture coordinates of a mesh: its active TCoords, else an array "TCoords" or
   /// "TextureCoordinates", with at least 2 components; null without.

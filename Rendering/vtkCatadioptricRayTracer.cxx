@@ -383,9 +383,18 @@ int vtkCatadioptricRayTracer::RequestData(
         if (normals && normals->GetNumberOfComponents() == 3)
         {
           tm.normals.resize(nPts);
+          std::vector<catar::Vec3> geometric; // for normals of zero length, NaN or Inf
           for (vtkIdType i = 0; i < nPts; ++i)
           {
             tm.normals[i] = V3(normals->GetTuple3(i)).normalized();
+            if (!(tm.normals[i].squaredNorm() > 0.0))
+            {
+              if (geometric.empty())
+              {
+                geometric = vtkCatadioptricLightingSupport::VertexNormals(mesh);
+              }
+              tm.normals[i] = geometric[i];
+            }
           }
         }
         else
@@ -400,6 +409,13 @@ int vtkCatadioptricRayTracer::RequestData(
         haveLights = true;
       }
       shadows = shadows || lighting->GetShadows();
+      const std::string lightingError = catar::ValidateLighting(
+        lights, tm.material, globalAmbient, tm.ambientFactor, tm.diffuseFactor, tm.opacity);
+      if (!lightingError.empty())
+      {
+        vtkErrorMacro("Mesh " << m << ": cannot shade: " << lightingError << ".");
+        return 0;
+      }
     }
     else
     {
@@ -414,9 +430,11 @@ int vtkCatadioptricRayTracer::RequestData(
       if (vtkDataArray* tcoords = vtkCatadioptricImageSupport::TextureCoordinates(mesh))
       {
         int texture = 0;
-        if (vtkDataArray* index = mesh->GetFieldData()->GetArray("TextureIndex"))
+        std::string textureError;
+        if (!vtkCatadioptricImageSupport::TextureIndex(mesh, texture, textureError))
         {
-          texture = static_cast<int>(index->GetComponent(0, 0));
+          vtkErrorMacro("Mesh " << m << ": " << textureError);
+          return 0;
         }
         if (texture >= static_cast<int>(textures.size()))
         {

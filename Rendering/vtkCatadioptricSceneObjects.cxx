@@ -1,6 +1,7 @@
 #include "vtkCatadioptricSceneObjects.h"
 
 #include "MeshFileCheck.h"
+#include "SafeCast.h"
 #include "SceneDescription.h"
 
 #include <Eigen/Geometry>
@@ -248,11 +249,11 @@ void Colorize(vtkPolyData* mesh, const catar::SceneObject& o)
       }
       if (o.pattern == "checker")
       {
-        long parity = 0;
+        long long parity = 0;
         for (int k = 0; k < 3; ++k)
         {
-          parity +=
-            static_cast<long>(std::floor((p[0][k] + p[1][k] + p[2][k]) / 3.0 / o.patternSize));
+          // Parity only: cells of NaN or huge coordinates get a defined value.
+          parity += catar::FloorToInteger((p[0][k] + p[1][k] + p[2][k]) / 3.0 / o.patternSize) & 1;
         }
         if (parity & 1)
         {
