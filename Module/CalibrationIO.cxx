@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -252,15 +253,30 @@ bool OpenStorage(cv::FileStorage& storage, const std::string& source, bool isTex
   }
   else
   {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(source, ec))
+    {
+      error = what + ": cannot open the file (" +
+        (ec ? ec.message() : std::string("not a regular file")) + ")";
+      return false;
+    }
     std::ifstream in(source, std::ios::binary);
     if (!in)
     {
       error = what + ": cannot open the file";
       return false;
     }
-    text.resize(kMaxTextBytes + 1);
-    in.read(&text[0], static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
+    try
+    {
+      text.resize(kMaxTextBytes + 1);
+      in.read(&text[0], static_cast<std::streamsize>(text.size()));
+      text.resize(static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+    }
+    catch (const std::exception& e)
+    {
+      error = what + ": cannot read the file (" + e.what() + ")";
+      return false;
+    }
   }
   if (text.size() > kMaxTextBytes)
   {
@@ -285,6 +301,11 @@ bool OpenStorage(cv::FileStorage& storage, const std::string& source, bool isTex
   catch (const cv::Exception& e)
   {
     error = what + ": not a valid YAML/JSON file (" + e.msg + ")";
+    return false;
+  }
+  catch (const std::exception& e) // the parser throws std::length_error on some broken files
+  {
+    error = what + ": not a valid YAML/JSON file (" + e.what() + ")";
     return false;
   }
   return true;

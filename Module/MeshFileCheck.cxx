@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -89,9 +91,20 @@ bool CheckPlyFile(const std::string& path, std::string& error)
     std::uint64_t count = 0;
     std::uint64_t minBytes = 0; // binary: the fixed sizes plus the lists' count fields
     std::uint64_t properties = 0;
+    std::vector<std::string> scalars; // names of the scalar properties
+    std::vector<std::string> lists;   // names of the list properties
+    std::vector<bool> isList;         // the properties in order: a list or a scalar
+    struct Property
+    {
+      std::string type;      // scalar type, or the list items' type
+      std::string countType; // lists only
+      std::string name;
+    };
+    std::vector<Property> props; // in order
   };
   std::vector<Element> elements;
   bool ascii = false, haveFormat = false, ended = false;
+  std::string format;
   // A header of more than 64 KiB or 10,000 lines is not a PLY header.
   for (int lines = 0; lines < 10000 && std::getline(in, line); ++lines)
   {
@@ -103,6 +116,10 @@ bool CheckPlyFile(const std::string& path, std::string& error)
     {
       line.pop_back();
     }
+    if (line.size() >= 4000 || line.find('\0') != std::string::npos)
+    {
+      return fail("a header line is longer than 4000 bytes or holds a NUL byte");
+    }
     std::istringstream words(line);
     std::string key;
     words >> key;
@@ -113,7 +130,6 @@ bool CheckPlyFile(const std::string& path, std::string& error)
     }
     if (key == "format")
     {
-      std::string format;
       words >> format;
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
       {
@@ -153,6 +169,11 @@ bool CheckPlyFile(const std::string& path, std::string& error)
           return fail("unknown list types '" + countType + "', '" + itemType + "'");
         }
         e.minBytes += PlyTypeSize(countType);
+        std::string name;
+        words >> name;
+        e.lists.push_back(name);
+        e.isList.push_back(true);
+        e.props.push_back({ itemType, countType, name });
       }
       else
       {
@@ -161,9 +182,18 @@ bool CheckPlyFile(const std::string& path, std::string& error)
           return fail("unknown property type '" + type + "'");
         }
         e.minBytes += PlyTypeSize(type);
+        std::string name;
+        words >> name;
+        e.scalars.push_back(name);
+        e.isList.push_back(false);
+        e.props.push_back({ type, "", name });
       }
     }
-    else if (key != "comment" && key != "obj_info" && !key.empty())
+    else if (key.empty())
+    {
+      return fail("a blank header line"); // the reader loses its place on one
+    }
+    else if (key != "comment" && key != "obj_info")
     {
       return fail("unknown header line '" + line.substr(0, 40) + "'");
     }
@@ -176,26 +206,108 @@ bool CheckPlyFile(const std::string& path, std::string& error)
   {
     return fail("no 'format' line");
   }
+  // What the reader needs (it does not check all of it): one 'vertex' element with scalar x, y
+  // and z, and one 'face' element with a list 'vertex_indices' (or 'vertex_index').
+  auto count = [&](const std::string& name) {
+    return std::count_if(
+      elements.begin(), elements.end(), [&](const Element& e) { return e.name == name; });
+  };
+  auto has = [](const std::vector<std::string>& names, const char* name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  if (count("vertex") != 1 || count("face") != 1)
+  {
+    return fail("it needs one 'vertex' and one 'face' element");
+  }
+  for (const Element& e : elements)
+  {
+    if (e.name == "vertex" && !(has(e.scalars, "x") && has(e.scalars, "y") && has(e.scalars, "z")))
+    {
+      return fail("its 'vertex' element lacks scalar properties x, y and z");
+    }
+    if (e.name == "face" && !has(e.lists, "vertex_indices") && !has(e.lists, "vertex_index"))
+    {
+      return fail("its 'face' element has no list property 'vertex_indices'");
+    }
+    if (e.name == "face" && (has(e.scalars, "vertex_indices") || has(e.scalars, "vertex_index")))
+    {
+      return fail("its 'face' property 'vertex_indices' must be a list");
+    }
+  }
   const std::uint64_t body = size - std::min<std::uint64_t>(size, in.tellg());
+  std::uint64_t vertices = 0;
+  for (const Element& e : elements)
+  {
+    vertices = e.name == "vertex" ? e.count : vertices;
+  }
   if (ascii)
   {
-    // One element a line: the file must have that many more lines.
-    std::uint64_t needed = 0;
+    // One element a line, with a word for each scalar property and, for each list, a count and
+    // that many words (the reader reads missing words through a null pointer).
+    std::uint64_t lineNumber = 0;
     for (const Element& e : elements)
     {
-      needed += e.properties > 0 ? e.count : 0;
-    }
-    std::uint64_t found = 0;
-    while (found < needed && std::getline(in, line))
-    {
-      found += line.find_first_not_of(" \t\r") != std::string::npos;
-    }
-    if (found < needed)
-    {
-      std::ostringstream s;
-      s << "its header announces " << needed << " elements but it has " << found
-        << " lines of data";
-      return fail(s.str());
+      for (std::uint64_t k = 0; k < e.count; ++k)
+      {
+        if (!std::getline(in, line))
+        {
+          std::ostringstream s;
+          s << "its data ends before element " << k << " of '" << e.name << "' (" << e.count
+            << " announced)";
+          return fail(s.str());
+        }
+        ++lineNumber;
+        if (in.eof())
+        {
+          return fail("its last data line has no line end"); // the reader then runs past it
+        }
+        // The reader reads a line into 4096 bytes and its words as C strings.
+        if (line.size() >= 4000 || line.find('\0') != std::string::npos)
+        {
+          std::ostringstream s;
+          s << "data line " << lineNumber << " is longer than 4000 bytes or holds a NUL byte";
+          return fail(s.str());
+        }
+        std::istringstream words(line);
+        std::string word;
+        for (bool list : e.isList)
+        {
+          if (!(words >> word))
+          {
+            std::ostringstream s;
+            s << "data line " << lineNumber << " has too few values for element '" << e.name << "'";
+            return fail(s.str());
+          }
+          std::uint64_t n = 0;
+          if (list)
+          {
+            if (!ParseCount(word, 1u << 20, n))
+            {
+              std::ostringstream s;
+              s << "data line " << lineNumber << " has a bad list count '" << word.substr(0, 20)
+                << "'";
+              return fail(s.str());
+            }
+            for (std::uint64_t j = 0; j < n; ++j)
+            {
+              if (!(words >> word))
+              {
+                std::ostringstream s;
+                s << "data line " << lineNumber << " has fewer list values than its count";
+                return fail(s.str());
+              }
+              std::uint64_t id = 0;
+              if (e.name == "face" && !(ParseCount(word, vertices - 1, id) && vertices > 0))
+              {
+                std::ostringstream s;
+                s << "data line " << lineNumber << ": face " << k << " names vertex '"
+                  << word.substr(0, 20) << "', but there are " << vertices << " vertices";
+                return fail(s.str());
+              }
+            }
+          }
+        }
+      }
     }
     return true;
   }
@@ -211,6 +323,88 @@ bool CheckPlyFile(const std::string& path, std::string& error)
       << " follow it";
     return fail(s.str());
   }
+  // Walk the data: every list's count must fit in the file, and every face's vertex ids must
+  // name a vertex (the reader builds cells from them before any check).
+  std::string data(static_cast<std::size_t>(body), '\0');
+  in.read(&data[0], static_cast<std::streamsize>(body));
+  if (static_cast<std::uint64_t>(in.gcount()) != body)
+  {
+    return fail("its data cannot be read");
+  }
+  const bool big = format == "binary_big_endian";
+  std::size_t at = 0;
+  // The value of type `type` at `at` (integers only: list counts and vertex ids).
+  auto integer = [&](const std::string& type, std::int64_t& v) {
+    const int n = PlyTypeSize(type);
+    if (at + n > data.size())
+    {
+      return false;
+    }
+    std::uint64_t u = 0;
+    for (int b = 0; b < n; ++b)
+    {
+      const std::uint64_t byte = static_cast<unsigned char>(data[at + (big ? b : n - 1 - b)]);
+      u = (u << 8) | byte;
+    }
+    const bool isSigned = type == "char" || type == "int8" || type == "short" || type == "int16" ||
+      type == "int" || type == "int32";
+    v = static_cast<std::int64_t>(u);
+    if (isSigned && n < 8 && (u >> (8 * n - 1)) != 0)
+    {
+      v -= std::int64_t(1) << (8 * n);
+    }
+    at += n;
+    return true;
+  };
+  for (const Element& e : elements)
+  {
+    for (std::uint64_t k = 0; k < e.count; ++k)
+    {
+      for (const Element::Property& prop : e.props)
+      {
+        if (prop.countType.empty())
+        {
+          at += PlyTypeSize(prop.type);
+          continue;
+        }
+        std::int64_t n = 0;
+        if (!integer(prop.countType, n) || n < 0 ||
+          static_cast<std::uint64_t>(n) * PlyTypeSize(prop.type) > data.size() - at)
+        {
+          std::ostringstream s;
+          s << "element " << k << " of '" << e.name << "' has a list count that does not fit";
+          return fail(s.str());
+        }
+        const bool ids =
+          e.name == "face" && (prop.name == "vertex_indices" || prop.name == "vertex_index");
+        const bool floating = prop.type == "float" || prop.type == "float32" ||
+          prop.type == "double" || prop.type == "float64";
+        for (std::int64_t j = 0; j < n; ++j)
+        {
+          if (!ids || floating)
+          {
+            at += PlyTypeSize(prop.type);
+            continue;
+          }
+          std::int64_t id = 0;
+          integer(prop.type, id);
+          if (id < 0 || static_cast<std::uint64_t>(id) >= vertices)
+          {
+            std::ostringstream s;
+            s << "face " << k << " names vertex " << id << ", but there are " << vertices
+              << " vertices";
+            return fail(s.str());
+          }
+        }
+      }
+      if (at > data.size())
+      {
+        std::ostringstream s;
+        s << "its data ends before element " << k << " of '" << e.name << "'";
+        return fail(s.str());
+      }
+    }
+  }
   return true;
 }
 
@@ -222,36 +416,112 @@ bool CheckLegacyVtkFile(const std::string& path, std::string& error)
     return false;
   }
   std::ifstream in(path, std::ios::binary);
+  // Section keywords whose next numbers count values that the reader allocates. The reader reads
+  // words, not lines, and compares only a keyword's length ("POINTS-1" is POINTS to it).
+  static const char* sections[] = { "points", "vertices", "lines", "polygons", "triangle_strips",
+    "point_data", "cell_data", "offsets", "connectivity" };
+  std::string word;
+  const char* pending = nullptr; // the section whose counts come next
+  int counts = 0;
+  while (in >> word)
+  {
+    if (pending && counts < 2 && std::isdigit(static_cast<unsigned char>(word[0])))
+    {
+      // A point takes at least 3 bytes (three numbers), any other value at least one.
+      std::uint64_t n = 0;
+      if (!ParseCount(word, std::string(pending) == "points" ? size / 3 : size, n))
+      {
+        std::string keyword = pending;
+        std::transform(keyword.begin(), keyword.end(), keyword.begin(),
+          [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+        error = path + ": not a valid VTK file: " + keyword + " announces " + word.substr(0, 24) +
+          " values, more than the file's " + std::to_string(size) + " bytes can hold";
+        return false;
+      }
+      ++counts;
+      continue;
+    }
+    pending = nullptr;
+    const std::string key = Lower(word);
+    for (const char* s : sections)
+    {
+      if (key.compare(0, std::strlen(s), s) == 0)
+      {
+        pending = s;
+        counts = 0;
+      }
+    }
+  }
+  return true;
+}
+
+bool CheckObjFile(const std::string& path, std::string& error)
+{
+  std::uint64_t size = 0;
+  if (!FileSize(path, size, error))
+  {
+    return false;
+  }
+  // Two passes: the counts of v, vt and vn, then every reference of f, l and p (1-based, or
+  // negative: relative to the ones read so far). The reader reads through them unchecked.
+  std::ifstream in(path, std::ios::binary);
   std::string line;
-  // Section keywords and which of their numbers count values that the reader allocates.
-  static const char* sections[] = { "POINTS", "VERTICES", "LINES", "POLYGONS", "TRIANGLE_STRIPS",
-    "POINT_DATA", "CELL_DATA", "OFFSETS", "CONNECTIVITY" };
+  std::int64_t total[3] = { 0, 0, 0 };
   while (std::getline(in, line))
   {
     std::istringstream words(line);
     std::string key;
     words >> key;
-    key = Lower(key);
-    for (const char* s : sections)
+    total[0] += key == "v";
+    total[1] += key == "vt";
+    total[2] += key == "vn";
+  }
+  in.clear();
+  in.seekg(0);
+  std::int64_t sofar[3] = { 0, 0, 0 };
+  std::uint64_t number = 0;
+  while (std::getline(in, line))
+  {
+    ++number;
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    sofar[0] += key == "v";
+    sofar[1] += key == "vt";
+    sofar[2] += key == "vn";
+    if (key != "f" && key != "l" && key != "p")
     {
-      if (key != Lower(s))
+      continue;
+    }
+    std::string ref;
+    while (words >> ref)
+    {
+      // v, v/vt, v//vn, v/vt/vn
+      std::size_t at = 0;
+      for (int k = 0; k < 3 && at <= ref.size(); ++k)
       {
-        continue;
-      }
-      std::string word;
-      for (int k = 0; k < 2 && words >> word; ++k)
-      {
-        if (!std::isdigit(static_cast<unsigned char>(word[0])))
+        const std::size_t slash = std::min(ref.find('/', at), ref.size());
+        const std::string part = ref.substr(at, slash - at);
+        at = slash + 1;
+        if (part.empty() && k > 0)
+        {
+          continue;
+        }
+        char* end = nullptr;
+        const long long id = std::strtoll(part.c_str(), &end, 10);
+        const bool isNumber = !part.empty() && end && *end == '\0';
+        const bool valid = isNumber && id != 0 && (id > 0 ? id <= total[k] : -id <= sofar[k]);
+        if (!valid)
+        {
+          static const char* kinds[] = { "vertex", "texture coordinate", "normal" };
+          error = path + ": not a valid OBJ file: line " + std::to_string(number) + " names " +
+            kinds[k] + " '" + part.substr(0, 24) + "', but the file has " +
+            std::to_string(total[k]) + " of them";
+          return false;
+        }
+        if (slash == ref.size())
         {
           break;
-        }
-        // A point takes at least 3 bytes (three numbers), any other value at least one.
-        std::uint64_t n = 0;
-        if (!ParseCount(word, key == "points" ? size / 3 : size, n))
-        {
-          error = path + ": not a valid VTK file: " + s + " announces " + word +
-            " values, more than the file's " + std::to_string(size) + " bytes can hold";
-          return false;
         }
       }
     }
@@ -267,11 +537,22 @@ bool CheckStlFile(const std::string& path, std::string& error)
     return false;
   }
   std::ifstream in(path, std::ios::binary);
-  char header[84] = {};
-  in.read(header, 84);
-  if (in.gcount() < 84 || std::string(header, 5) == "solid")
+  char header[256] = {};
+  in.read(header, 256);
+  const std::streamsize got = in.gcount();
+  // As the reader decides: ASCII when it starts with "solid" and its first 256 bytes are text.
+  const bool text = std::all_of(header, header + got, [](char c) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    return (u >= 32 && u < 127) || u == '\n' || u == '\r' || u == '\t';
+  });
+  if (got >= 5 && std::string(header, 5) == "solid" && text)
   {
-    return true; // ASCII, or too short to be binary: the reader reports it
+    return true;
+  }
+  if (got < 84)
+  {
+    error = path + ": not a valid STL file: too short for a binary STL header";
+    return false;
   }
   const auto* b = reinterpret_cast<const unsigned char*>(header + 80);
   const std::uint64_t triangles = std::uint64_t(b[0]) | (std::uint64_t(b[1]) << 8) |
@@ -300,6 +581,10 @@ bool CheckMeshFile(const std::string& path, std::string& error)
   if (ext == ".stl")
   {
     return CheckStlFile(path, error);
+  }
+  if (ext == ".obj")
+  {
+    return CheckObjFile(path, error);
   }
   std::uint64_t size = 0;
   return FileSize(path, size, error);

@@ -23,11 +23,15 @@ bool CheckPlyFile(const std::string& path, std::string& error);
 /// bytes.
 bool CheckLegacyVtkFile(const std::string& path, std::string& error);
 
+/// Checks every face, line and point reference of an OBJ file against the vertices, texture
+/// coordinates and normals it has (1-based, or negative: relative).
+bool CheckObjFile(const std::string& path, std::string& error);
+
 /// Checks a binary STL file's triangle count against its size (84 + 50 bytes a triangle); ASCII
 /// STL files pass.
 bool CheckStlFile(const std::string& path, std::string& error);
 
-/// The check for a file by its extension (.ply, .vtk, .stl; other files only against
+/// The check for a file by its extension (.ply, .vtk, .stl, .obj; other files only against
 /// kMaxMeshFileBytes). False with a sentence in `error`.
 bool CheckMeshFile(const std::string& path, std::string& error);
 } // namespace catar

@@ -133,9 +133,24 @@ vtkSmartPointer<vtkPolyData> ReadMesh(const std::string& file)
   {
     throw std::runtime_error("no surface read from " + file);
   }
-  if (!vtkCatadioptricMeshCheck::Check(out, error))
+  if (!vtkCatadioptricMeshCheck::CheckPointIds(out, error))
   {
     throw std::runtime_error(file + ": " + error);
+  }
+  // Arrays a reader made shorter than the points or cells (an OBJ file's normals that its faces
+  // do not index) describe nothing usable: dropped, as if absent.
+  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(out->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(out->GetCellData()) })
+  {
+    const vtkIdType n =
+      data == out->GetPointData() ? out->GetNumberOfPoints() : out->GetNumberOfCells();
+    for (int a = data->GetNumberOfArrays() - 1; a >= 0; --a)
+    {
+      if (data->GetAbstractArray(a)->GetNumberOfTuples() < n)
+      {
+        data->RemoveArray(a);
+      }
+    }
   }
   return out;
 }
