@@ -40,6 +40,16 @@ std::vector<double> Numbers(const cv::FileNode& node, const std::string& key)
   }
   else if (node.isMap() && !node["data"].empty())
   {
+    // rows x cols must be what data holds before OpenCV allocates them (a lying size would
+    // reserve gigabytes).
+    const cv::FileNode rows = node["rows"], cols = node["cols"], data = node["data"];
+    if (!rows.isInt() || !cols.isInt() || !data.isSeq() || static_cast<int>(rows) < 1 ||
+      static_cast<int>(cols) < 1 ||
+      static_cast<double>(static_cast<int>(rows)) * static_cast<int>(cols) !=
+        static_cast<double>(data.size()))
+    {
+      throw ParseError("'" + key + "': the matrix's rows x cols must match its data");
+    }
     cv::Mat m;
     node >> m;
     if (m.empty())

@@ -443,6 +443,33 @@ bool CheckLegacyVtkFile(const std::string& path, std::string& error)
     }
     pending = nullptr;
     const std::string key = Lower(word);
+    // Attribute headers whose component counts the reader allocates by: SCALARS name type [n]
+    // (1 to 4), COLOR_SCALARS name n (1 to 4), TEXTURE_COORDINATES name n type (1 to 3).
+    const int skip = key == "scalars"                            ? 2
+      : (key == "color_scalars" || key == "texture_coordinates") ? 1
+                                                                 : -1;
+    if (skip >= 0)
+    {
+      std::string line;
+      std::getline(in, line);
+      std::istringstream rest(line);
+      std::string w;
+      for (int k = 0; k < skip && rest >> w; ++k)
+      {
+      }
+      if (rest >> w && std::isdigit(static_cast<unsigned char>(w[0])))
+      {
+        std::uint64_t n = 0;
+        const std::uint64_t most = key == "texture_coordinates" ? 3 : 4;
+        if (!ParseCount(w, most, n) || n < 1)
+        {
+          error = path + ": not a valid VTK file: " + word + " has " + w.substr(0, 24) +
+            " components (1 to " + std::to_string(most) + ")";
+          return false;
+        }
+      }
+      continue;
+    }
     for (const char* s : sections)
     {
       if (key.compare(0, std::strlen(s), s) == 0)
