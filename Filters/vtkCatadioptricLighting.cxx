@@ -9,6 +9,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricMeshCheck.h"
+#include "vtkCatadioptricOccluders.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricPointReader.h"
 #include "vtkCellArray.h"
@@ -210,35 +211,9 @@ struct vtkCatadioptricLighting::Internals
     {
       return true;
     }
-    std::vector<float> xyz;
-    std::vector<std::uint32_t> tris;
-    vtkNew<vtkIdList> ids;
-    for (vtkPolyData* mesh : meshes)
-    {
-      const std::uint32_t offset = static_cast<std::uint32_t>(xyz.size() / 3);
-      for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
-      {
-        double p[3];
-        mesh->GetPoint(i, p);
-        xyz.insert(xyz.end(),
-          { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) });
-      }
-      vtkCellArray* polys = mesh->GetPolys();
-      for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
-      {
-        polys->GetCellAtId(c, ids);
-        for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
-        {
-          tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(0)));
-          tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k)));
-          tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k + 1)));
-        }
-      }
-    }
-    this->Built = this->Scene.Build(xyz, tris);
+    this->Built = vtkCatadioptricLightingSupport::BuildRayScene(meshes, this->Scene, error);
     if (!this->Built)
     {
-      error = this->Scene.GetError();
       return false;
     }
     this->Sources = sources;
@@ -354,10 +329,28 @@ vtkProperty* vtkCatadioptricLighting::GetProperty()
   return this->Property;
 }
 
+void vtkCatadioptricLighting::SetOccluders(vtkCatadioptricOccluders* occluders)
+{
+  if (this->Occluders != occluders)
+  {
+    this->Occluders = occluders;
+    this->Modified();
+  }
+}
+
+vtkCatadioptricOccluders* vtkCatadioptricLighting::GetOccluders()
+{
+  return this->Occluders;
+}
+
 vtkMTimeType vtkCatadioptricLighting::GetMTime()
 {
   vtkMTimeType t = std::max(this->Superclass::GetMTime(), this->Lights->GetMTime());
   t = std::max(t, this->Property->GetMTime());
+  if (this->Occluders && this->Shadows)
+  {
+    t = std::max(t, this->Occluders->GetMTime());
+  }
   vtkCollectionSimpleIterator it;
   this->Lights->InitTraversal(it);
   while (vtkLight* l = this->Lights->GetNextLight(it))
@@ -427,9 +420,25 @@ int vtkCatadioptricLighting::RequestData(
   }
   const catar::LightSet lights(lightList);
 
-  // Shadows: the mesh's own triangles.
+  // Shadows: the shared occluders, or the mesh's own triangles and those on port 1.
   const bool shadows = this->Shadows && mode != NONE && !lights.empty();
-  if (shadows)
+  const catar::RayScene* shadowScene = nullptr;
+  if (shadows && this->Occluders)
+  {
+    if (inputVector[1]->GetNumberOfInformationObjects() > 0)
+    {
+      vtkErrorMacro("Occluders on input port 1 and shared occluders (SetOccluders) were both "
+                    "given: use one or the other.");
+      return 0;
+    }
+    if (!this->Occluders->Update())
+    {
+      vtkErrorMacro("Cannot build the shared occluders' ray scene.");
+      return 0;
+    }
+    shadowScene = &this->Occluders->GetRayScene();
+  }
+  else if (shadows)
   {
     std::vector<vtkPolyData*> meshes{ input };
     for (int i = 0; i < inputVector[1]->GetNumberOfInformationObjects(); ++i)
@@ -445,8 +454,8 @@ int vtkCatadioptricLighting::RequestData(
       vtkErrorMacro("Cannot build the shadow ray scene: " << error);
       return 0;
     }
+    shadowScene = &this->Internal->Scene;
   }
-  const catar::RayScene& scene = this->Internal->Scene;
   this->UpdateProgress(0.1);
 
   // The colour of point p with normal n seen from viewer (all world), base colour rgba: shaded
@@ -460,7 +469,7 @@ int vtkCatadioptricLighting::RequestData(
   shading.Opacity = opacity;
   shading.BaseColours = base.HasArray();
   shading.TwoSided = this->TwoSidedLighting;
-  shading.ShadowScene = shadows ? &scene : nullptr;
+  shading.ShadowScene = shadowScene;
 
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetName("Colors");
@@ -670,4 +679,5 @@ void vtkCatadioptricLighting::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InputColorArrayName: "
      << (this->InputColorArrayName ? this->InputColorArrayName : "(none)") << "\n";
   os << indent << "Lights: " << this->Lights->GetNumberOfItems() << "\n";
+  os << indent << "Occluders: " << (this->Occluders ? "shared" : "(none)") << "\n";
 }

@@ -24,7 +24,10 @@
  * Shadows: with Shadows on, a light contributes its diffuse and specular terms only where the
  * segment from the surface point to the light is free: Embree ray queries against the input's own
  * polygons and those of the meshes on input port 1 (optional, repeatable: the other objects of the
- * scene, in world coordinates). The acceleration structure is kept while no mesh changes.
+ * scene, in world coordinates). The acceleration structure is kept while no mesh changes. In a
+ * scene of many objects, give every object's filter the same vtkCatadioptricOccluders instead
+ * (SetOccluders): one structure of all the meshes, built once and shared, rather than one per
+ * filter of every mesh.
  *
  * Points and cells that are not visible are left black. Work is split over the threads of
  * vtkCatadioptricParallel (as many as vtkSMPTools would use).
@@ -38,6 +41,7 @@
 
 #include <memory> // for std::unique_ptr
 
+class vtkCatadioptricOccluders;
 class vtkLight;
 class vtkLightCollection;
 class vtkProperty;
@@ -54,6 +58,15 @@ public:
   void AddOccluderConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
   void AddOccluderData(vtkDataObject* mesh) { this->AddInputData(1, mesh); }
   void RemoveAllOccluderConnections() { this->RemoveAllInputConnections(1); }
+  ///@}
+
+  ///@{
+  /// A shared shadow structure (default none). When set, shadows are traced against its meshes
+  /// only, not against the input's own polygons: it should hold the input's mesh (before
+  /// projection) and the other objects. Give the same object to the filters of every object of a
+  /// scene. Occluders on input port 1 as well are an error.
+  void SetOccluders(vtkCatadioptricOccluders* occluders);
+  vtkCatadioptricOccluders* GetOccluders();
   ///@}
 
   ///@{
@@ -133,7 +146,8 @@ public:
   vtkGetStringMacro(InputColorArrayName);
   ///@}
 
-  /// The modification time includes the lights' and the property's.
+  /// The modification time includes the lights', the property's and, with shadows, the shared
+  /// occluders'.
   vtkMTimeType GetMTime() override;
 
 protected:
@@ -146,6 +160,7 @@ protected:
 
   vtkSmartPointer<vtkLightCollection> Lights;
   vtkSmartPointer<vtkProperty> Property;
+  vtkSmartPointer<vtkCatadioptricOccluders> Occluders;
   int ShadingMode = GOURAUD;
   bool Shadows = true;
   bool TwoSidedLighting = true;

@@ -1,5 +1,7 @@
 #include "vtkCatadioptricLightingSupport.h"
 
+#include "RayScene.h"
+
 #include "vtkCellArray.h"
 #include "vtkIdList.h"
 #include "vtkLight.h"
@@ -9,6 +11,8 @@
 #include "vtkProperty.h"
 
 #include <Eigen/Geometry>
+
+#include <cstdint>
 
 namespace
 {
@@ -98,4 +102,40 @@ std::vector<catar::Vec3> vtkCatadioptricLightingSupport::VertexNormals(vtkPolyDa
     v = len > 0 ? catar::Vec3(v / len) : catar::Vec3(0, 0, 1);
   }
   return normals;
+}
+
+bool vtkCatadioptricLightingSupport::BuildRayScene(
+  const std::vector<vtkPolyData*>& meshes, catar::RayScene& scene, std::string& error)
+{
+  std::vector<float> xyz;
+  std::vector<std::uint32_t> tris;
+  vtkNew<vtkIdList> ids;
+  for (vtkPolyData* mesh : meshes)
+  {
+    const std::uint32_t offset = static_cast<std::uint32_t>(xyz.size() / 3);
+    for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      mesh->GetPoint(i, p);
+      xyz.insert(xyz.end(),
+        { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) });
+    }
+    vtkCellArray* polys = mesh->GetPolys();
+    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+    {
+      polys->GetCellAtId(c, ids);
+      for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
+      {
+        tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(0)));
+        tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k)));
+        tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k + 1)));
+      }
+    }
+  }
+  if (!scene.Build(xyz, tris))
+  {
+    error = scene.GetError();
+    return false;
+  }
+  return true;
 }

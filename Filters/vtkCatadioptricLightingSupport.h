@@ -4,7 +4,8 @@
  *
  * Not a vtkObject (C++ only, not wrapped): vtkLights to Core light sources, a vtkProperty to a
  * Core material, and area-weighted vertex normals, so that the fast path and the exact reference
- * light a scene from the very same parameters.
+ * light a scene from the very same parameters; and the shadow rays' scene made from meshes (the
+ * lighting filter's own, and vtkCatadioptricOccluders' shared one).
  */
 #ifndef vtkCatadioptricLightingSupport_h
 #define vtkCatadioptricLightingSupport_h
@@ -12,8 +13,13 @@
 #include "CatadioptricARFiltersModule.h" // for export macro
 #include "Lighting.h"                    // for catar::LightSource, catar::Material
 
+#include <string> // for std::string
 #include <vector> // for std::vector
 
+namespace catar
+{
+class RayScene;
+}
 class vtkLightCollection;
 class vtkPolyData;
 class vtkProperty;
@@ -32,6 +38,12 @@ public:
   /// Area-weighted vertex normals (Newell normals of the polygons summed at their vertices),
   /// unit length; (0, 0, 1) where a point has no polygon.
   static std::vector<catar::Vec3> VertexNormals(vtkPolyData* mesh);
+
+  /// Builds `scene` from the polygons of `meshes` (world coordinates, fan-triangulated), the
+  /// meshes' points one after another in that order. Returns false and says why in `error` when
+  /// Embree cannot build it (NaN coordinates, ...).
+  static bool BuildRayScene(
+    const std::vector<vtkPolyData*>& meshes, catar::RayScene& scene, std::string& error);
 };
 
 #endif

@@ -3,14 +3,17 @@
 #include "FileOutput.h"
 #include "SceneDescription.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
+#include "vtkCatadioptricOccluders.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricSceneObjects.h"
+#include "vtkCellData.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
@@ -21,6 +24,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkSmartPointer.h"
@@ -31,6 +35,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -51,6 +56,45 @@ double Seconds(Clock::time_point a, Clock::time_point b)
   return std::chrono::duration<double>(b - a).count();
 }
 
+// What a mesh must share with the meshes it is drawn with in one pipeline: polygons only, the
+// same type of points and the same point and cell arrays (name, type, components, attribute).
+// "" for a mesh that is drawn alone.
+std::string Layout(vtkPolyData* mesh)
+{
+  if (!mesh->GetPoints() || mesh->GetNumberOfPolys() == 0 ||
+    mesh->GetNumberOfCells() != mesh->GetNumberOfPolys())
+  {
+    return "";
+  }
+  std::ostringstream s;
+  s << mesh->GetPoints()->GetDataType();
+  for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(mesh->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(mesh->GetCellData()) })
+  {
+    s << "|";
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* array = data->GetAbstractArray(a);
+      s << (array->GetName() ? array->GetName() : "") << ":" << array->GetDataType() << ":"
+        << array->GetNumberOfComponents() << ":" << data->IsArrayAnAttribute(a) << ";";
+    }
+  }
+  return s.str();
+}
+
+// Whether object b can be drawn in one pipeline with object a (the first of a run): neither is
+// textured (a texture is named per mesh) and, when the scene is lit, their materials agree.
+bool SameLook(const catar::SceneObject& a, const catar::SceneObject& b, bool lit)
+{
+  if (!a.texture.empty() || !b.texture.empty())
+  {
+    return false;
+  }
+  return !lit ||
+    (a.ambient == b.ambient && a.diffuse == b.diffuse && a.specular == b.specular &&
+      a.specularPower == b.specularPower && a.specularColor == b.specularColor);
+}
+
 } // namespace
 
 struct vtkCatadioptricSceneRenderer::Internals
@@ -69,6 +113,8 @@ struct vtkCatadioptricSceneRenderer::Internals
   std::vector<vtkSmartPointer<vtkCatadioptricLighting>> Lightings;
   std::vector<vtkSmartPointer<vtkCatadioptricPainterSort>> Sorts;
   vtkNew<vtkCatadioptricCompositor> Compositor;
+  // Every object's mesh, for the shadows: one ray-query structure shared by the lighting filters.
+  vtkNew<vtkCatadioptricOccluders> Occluders;
 };
 
 vtkCatadioptricSceneRenderer::vtkCatadioptricSceneRenderer()
@@ -200,11 +246,59 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     }
     index->InsertNextValue(textures++);
   }
-  for (size_t i = 0; i < meshes.size(); ++i)
+  // Consecutive objects that look alike (untextured, the same material when lit, meshes of the
+  // same layout) go down one pipeline as one mesh, their points and polygons one after another:
+  // per-object filters cost more than a small object's triangles. The image is the same: every
+  // stage works point by point and cell by cell, and the painter sort of the joined mesh keeps
+  // equal depths in object order, as the compositor's merge of separate meshes does. Not with
+  // the iterative solver: it starts each point's Newton at a neighbour's reflection point, so the
+  // first points of a joined object would be the same only to rounding.
+  const bool join = scene.solver != catar::SolverType::Iterative;
+  std::vector<vtkSmartPointer<vtkPolyData>> groups;
+  std::vector<size_t> groupFirst; // the first object of each group (its material)
+  for (size_t i = 0; i < meshes.size();)
   {
-    const catar::SceneObject& o = scene.objects[i];
+    const std::string layout = join ? Layout(meshes[i]) : std::string();
+    size_t end = i + 1;
+    while (!layout.empty() && end < meshes.size() &&
+      SameLook(scene.objects[i], scene.objects[end], lit) && Layout(meshes[end]) == layout)
+    {
+      ++end;
+    }
+    if (end == i + 1)
+    {
+      groups.push_back(meshes[i]);
+    }
+    else
+    {
+      std::vector<vtkPolyData*> parts;
+      for (size_t j = i; j < end; ++j)
+      {
+        parts.push_back(meshes[j]);
+      }
+      vtkNew<vtkAppendPolyData> append;
+      auto joined = vtkSmartPointer<vtkPolyData>::New();
+      append->ExecuteAppend(joined, parts.data(), static_cast<int>(parts.size()));
+      vtkNew<vtkIntArray> index;
+      index->SetName("TextureIndex");
+      index->InsertNextValue(-1);
+      joined->GetFieldData()->AddArray(index);
+      groups.push_back(joined);
+    }
+    groupFirst.push_back(i);
+    i = end;
+  }
+  const bool shadows = lit && scene.lighting.shadows;
+  in.Occluders->RemoveAllMeshes();
+  for (size_t g = 0; g < groups.size() && shadows; ++g)
+  {
+    in.Occluders->AddMesh(groups[g]);
+  }
+  for (size_t g = 0; g < groups.size(); ++g)
+  {
+    const catar::SceneObject& o = scene.objects[groupFirst[g]];
     auto proj = vtkSmartPointer<vtkCatadioptricProjection>::New();
-    proj->SetInputData(meshes[i]);
+    proj->SetInputData(groups[g]);
     proj->SetCamera(in.Camera);
     proj->SetBackFaceCulling(scene.cullBackFaces);
     proj->SetSolver(scene.solver == catar::SolverType::Iterative
@@ -219,20 +313,17 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
       lighting->SetShadingMode(scene.lighting.shading == "flat"
           ? vtkCatadioptricLighting::FLAT
           : vtkCatadioptricLighting::GOURAUD);
-      lighting->SetShadows(scene.lighting.shadows);
+      lighting->SetShadows(shadows);
       lighting->SetGlobalAmbient(scene.lighting.globalAmbient.data());
       lighting->SetAmbient(o.ambient);
       lighting->SetDiffuse(o.diffuse);
       lighting->SetSpecular(o.specular);
       lighting->SetSpecularPower(o.specularPower);
       lighting->GetProperty()->SetSpecularColor(o.specularColor.data());
-      // The other objects cast shadows too.
-      for (size_t j = 0; j < meshes.size(); ++j)
+      // Every object casts shadows, on itself and on the others: one structure for all.
+      if (shadows)
       {
-        if (j != i)
-        {
-          lighting->AddOccluderData(meshes[j]);
-        }
+        lighting->SetOccluders(in.Occluders);
       }
       in.Lightings.push_back(lighting);
       last = lighting->GetOutputPort();

@@ -10,6 +10,12 @@
  * buffer). Meshes are prepared once; Render() can be called again after the
  * camera pose changes, and then redoes only the per-frame stages.
  *
+ * Consecutive objects that look alike (untextured, the same material when lit, meshes with the
+ * same arrays) go through one pipeline as one mesh, so that a scene of many small objects does
+ * not cost a pipeline per object; the image is the same. (Not with the iterative solver, whose
+ * reflection points depend on their neighbours' in the last bits.) Shadows are traced against one
+ * vtkCatadioptricOccluders of all the meshes, shared by the lighting filters and built once.
+ *
  * The wall-clock time of each stage of the last Render() is kept (GetStageName / GetStageTime).
  */
 #ifndef vtkCatadioptricSceneRenderer_h
