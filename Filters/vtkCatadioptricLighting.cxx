@@ -138,10 +138,7 @@ private:
   float Alpha[W];
   unsigned char* Out[W];
 };
-} // namespace
 
-namespace
-{
 // Whether one of n normals (read through the raw pointer of their type when given) has zero
 // length or a NaN or infinite component.
 bool HasDegenerateNormal(
@@ -184,6 +181,21 @@ struct vtkCatadioptricLighting::Internals
   // Vertex normals of the input, and what they were computed from.
   std::vector<catar::Vec3> Normals;
   std::tuple<vtkPoints*, vtkMTimeType, vtkMTimeType> NormalsSource{ nullptr, 0, 0 };
+
+  // Whether the input's normals have a degenerate one, and for which array and MTime: scanned
+  // once, not every frame.
+  std::tuple<vtkDataArray*, vtkMTimeType, bool> Degenerate{ nullptr, 0, false };
+
+  bool HasDegenerate(vtkDataArray* normals, const float* floats, const double* doubles, vtkIdType n)
+  {
+    if (std::get<0>(this->Degenerate) != normals ||
+      std::get<1>(this->Degenerate) != normals->GetMTime())
+    {
+      this->Degenerate = std::make_tuple(
+        normals, normals->GetMTime(), HasDegenerateNormal(normals, floats, doubles, n));
+    }
+    return std::get<2>(this->Degenerate);
+  }
 
   const std::vector<catar::Vec3>& GetNormals(vtkPolyData* mesh)
   {
@@ -529,7 +541,7 @@ int vtkCatadioptricLighting::RequestData(
     const double* normalDoubles = normalDoubleArray ? normalDoubleArray->GetPointer(0) : nullptr;
     // Given normals of zero length or with NaN or Inf take the mesh's own vertex normal.
     const std::vector<catar::Vec3>* fallback =
-      normals.empty() && HasDegenerateNormal(inNormals, normalFloats, normalDoubles, nPts)
+      normals.empty() && this->Internal->HasDegenerate(inNormals, normalFloats, normalDoubles, nPts)
       ? &this->Internal->GetNormals(input)
       : nullptr;
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {

@@ -2,6 +2,7 @@
 
 #include "RayScene.h"
 
+#include "vtkCatadioptricMeshCheck.h"
 #include "vtkCellArray.h"
 #include "vtkIdList.h"
 #include "vtkLight.h"
@@ -112,6 +113,13 @@ bool vtkCatadioptricLightingSupport::BuildRayScene(
   vtkNew<vtkIdList> ids;
   for (vtkPolyData* mesh : meshes)
   {
+    // An occluder's ids are read here, not by a filter's input check: a negative one would wrap
+    // to another mesh's point.
+    if (!vtkCatadioptricMeshCheck::CheckPointIds(mesh, error))
+    {
+      error = "an occluder mesh: " + error;
+      return false;
+    }
     const std::uint32_t offset = static_cast<std::uint32_t>(xyz.size() / 3);
     for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
     {

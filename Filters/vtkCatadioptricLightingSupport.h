@@ -41,7 +41,7 @@ public:
 
   /// Builds `scene` from the polygons of `meshes` (world coordinates, fan-triangulated), the
   /// meshes' points one after another in that order. Returns false and says why in `error` when
-  /// Embree cannot build it (NaN coordinates, ...).
+  /// a mesh's cells name points it does not have, or Embree cannot build it (NaN coordinates, ...).
   static bool BuildRayScene(
     const std::vector<vtkPolyData*>& meshes, catar::RayScene& scene, std::string& error);
 };

@@ -7,6 +7,7 @@
 #include "vtkCatadioptricEnvironmentSource.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricMeshCheck.h"
+#include "vtkCatadioptricOccluders.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricRayTracer.h"
@@ -144,6 +145,42 @@ TEST(BadInput, CellsNamingMissingPointsAreRefusedByEveryFilter)
       EXPECT_TRUE(Contains(errors->Last, "names point"))
         << filter->GetClassName() << ": " << errors->Last;
     }
+  }
+}
+
+TEST(BadInput, OccludersNamingMissingPointsAreRefused)
+{
+  // The occluders are read only to build the shadows' ray scene: checked there, through the
+  // occluder port and through shared occluders alike.
+  vtkSmartPointer<vtkPolyData> projected = Projected(Sphere());
+  vtkSmartPointer<vtkPolyData> bad = SphereWithBadId(-1);
+  for (bool shared : { false, true })
+  {
+    vtkNew<vtkLight> light;
+    light->SetPosition(0, 0, 2);
+    vtkNew<vtkCatadioptricLighting> lighting;
+    lighting->AddLight(light);
+    lighting->SetShadows(true);
+    lighting->SetInputData(projected);
+    vtkNew<vtkCatadioptricOccluders> occluders;
+    if (shared)
+    {
+      occluders->AddMesh(projected);
+      occluders->AddMesh(bad);
+      lighting->SetOccluders(occluders);
+    }
+    else
+    {
+      lighting->AddOccluderData(bad);
+    }
+    vtkNew<ErrorCounter> errors;
+    errors->Watch(lighting);
+    vtkNew<ErrorCounter> occluderErrors;
+    occluderErrors->Watch(occluders);
+    lighting->Update();
+    EXPECT_EQ(errors->Count, 1) << shared;
+    const std::string& message = shared ? occluderErrors->Last : errors->Last;
+    EXPECT_TRUE(Contains(message, "an occluder mesh: cell")) << message;
   }
 }
 
