@@ -1,9 +1,7 @@
 #include "SceneDescription.h"
 
 #include "CalibrationIO.h"
-#include "FileStorageUtil.h"
-
-#include <opencv2/core.hpp>
+#include "ConfigReader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,9 +30,9 @@ std::string DirName(const std::string& path)
   return slash == 0 ? "/" : path.substr(0, slash);
 }
 
-Vec3 Vec3Or(const cv::FileNode& parent, const std::string& key, const Vec3& fallback)
+Vec3 Vec3Or(const fs::Node& parent, const std::string& key, const Vec3& fallback)
 {
-  const cv::FileNode n = parent[key];
+  const fs::Node n = parent[key];
   if (n.empty() || n.isNone())
   {
     return fallback;
@@ -51,7 +49,7 @@ Vec3 Vec3Or(const cv::FileNode& parent, const std::string& key, const Vec3& fall
   return Vec3(v[0], v[1], v[2]);
 }
 
-Vec3 ColorOr(const cv::FileNode& parent, const std::string& key, const Vec3& fallback)
+Vec3 ColorOr(const fs::Node& parent, const std::string& key, const Vec3& fallback)
 {
   const Vec3 c = Vec3Or(parent, key, fallback);
   if ((c.array() < 0.0).any() || (c.array() > 1.0).any())
@@ -63,7 +61,7 @@ Vec3 ColorOr(const cv::FileNode& parent, const std::string& key, const Vec3& fal
 
 // `remesh: none`, `remesh: { target_area: A }` or `remesh: { pixel_tolerance: P }` (plus
 // iterations, feature_angle), starting from `fallback`.
-SceneRemesh ReadRemesh(const cv::FileNode& node, const SceneRemesh& fallback)
+SceneRemesh ReadRemesh(const fs::Node& node, const SceneRemesh& fallback)
 {
   SceneRemesh r = fallback;
   if (node.empty() || node.isNone())
@@ -72,7 +70,7 @@ SceneRemesh ReadRemesh(const cv::FileNode& node, const SceneRemesh& fallback)
   }
   if (node.isString())
   {
-    if (static_cast<std::string>(node) != "none")
+    if (node.text() != "none")
     {
       throw fs::ParseError("'remesh' must be 'none' or a map");
     }
@@ -130,7 +128,7 @@ SceneRemesh ReadRemesh(const cv::FileNode& node, const SceneRemesh& fallback)
 }
 
 SceneObject ReadObject(
-  const cv::FileNode& node, const std::string& baseDir, int index, const SceneRemesh& defaultRemesh)
+  const fs::Node& node, const std::string& baseDir, int index, const SceneRemesh& defaultRemesh)
 {
   std::ostringstream where;
   where << "objects[" << index << "]";
@@ -166,7 +164,7 @@ SceneObject ReadObject(
         "unknown type '" + o.type + "' (mesh, box, sphere, torus, cylinder, plane)");
     }
     o.name = fs::String(node, "name", o.type);
-    const cv::FileNode size = node["size"];
+    const fs::Node size = node["size"];
     if (!size.empty() && !size.isNone() && fs::Numbers(size, "size").size() == 2)
     {
       const std::vector<double> xy = fs::Numbers(size, "size"); // a plane's x and y
@@ -211,7 +209,7 @@ SceneObject ReadObject(
     {
       throw fs::ParseError("'opacity' must be in [0, 1]");
     }
-    o.faceColors = fs::Number(node, "face_colors", o.faceColors ? 1 : 0) != 0;
+    o.faceColors = fs::Flag(node, "face_colors", o.faceColors);
     o.pattern = fs::String(node, "pattern", o.pattern);
     if (o.pattern != "none" && o.pattern != "checker")
     {
@@ -228,7 +226,7 @@ SceneObject ReadObject(
       o.texture = Resolve(baseDir, o.texture);
     }
     o.remesh = ReadRemesh(node["remesh"], defaultRemesh);
-    const cv::FileNode material = node["material"];
+    const fs::Node material = node["material"];
     if (!material.empty() && !material.isNone())
     {
       if (!material.isMap())
@@ -269,7 +267,7 @@ SceneObject ReadObject(
   }
 }
 
-SceneLight ReadLight(const cv::FileNode& node, int index)
+SceneLight ReadLight(const fs::Node& node, int index)
 {
   std::ostringstream where;
   where << "lighting.lights[" << index << "]";
@@ -324,7 +322,7 @@ SceneLight ReadLight(const cv::FileNode& node, int index)
   }
 }
 
-SceneLighting ReadLighting(const cv::FileNode& node)
+SceneLighting ReadLighting(const fs::Node& node)
 {
   SceneLighting lighting;
   if (node.empty() || node.isNone())
@@ -348,9 +346,9 @@ SceneLighting ReadLighting(const cv::FileNode& node)
   {
     throw fs::ParseError("lighting: 'shading' must be none, flat or gouraud");
   }
-  lighting.shadows = fs::Number(node, "shadows", 1) != 0;
+  lighting.shadows = fs::Flag(node, "shadows", true);
   lighting.globalAmbient = ColorOr(node, "global_ambient", lighting.globalAmbient);
-  const cv::FileNode lights = node["lights"];
+  const fs::Node lights = node["lights"];
   if (!lights.empty() && !lights.isNone())
   {
     if (!lights.isSeq())
@@ -358,15 +356,15 @@ SceneLighting ReadLighting(const cv::FileNode& node)
       throw fs::ParseError("lighting: 'lights' must be a sequence");
     }
     int i = 0;
-    for (cv::FileNodeIterator it = lights.begin(); it != lights.end(); ++it, ++i)
+    for (const fs::Node& light : lights.items())
     {
-      lighting.lights.push_back(ReadLight(*it, i));
+      lighting.lights.push_back(ReadLight(light, i++));
     }
   }
   return lighting;
 }
 
-void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescription& out)
+void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescription& out)
 {
   SceneDescription scene;
   if (!root.isMap())
@@ -376,10 +374,10 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   fs::CheckKeys(root,
     { "camera", "output", "solver", "cull_back_faces", "visibility", "background", "lighting",
       "remesh", "objects" });
-  const cv::FileNode cam = root["camera"];
+  const fs::Node cam = root["camera"];
   if (cam.isString())
   {
-    const std::string path = Resolve(baseDir, static_cast<std::string>(cam));
+    const std::string path = Resolve(baseDir, cam.text());
     std::string error;
     if (!LoadCalibration(path, scene.camera, error))
     {
@@ -403,13 +401,13 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   }
   for (const char* key : { "output", "background", "lighting" })
   {
-    const cv::FileNode n = root[key];
+    const fs::Node n = root[key];
     if (!n.empty() && !n.isNone() && !n.isMap())
     {
       throw fs::ParseError(std::string("'") + key + "' must be a map");
     }
   }
-  const cv::FileNode output = root["output"];
+  const fs::Node output = root["output"];
   if (output.isMap())
   {
     try
@@ -448,14 +446,14 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   {
     throw fs::ParseError("'solver' must be 'quartic' or 'iterative'");
   }
-  scene.cullBackFaces = fs::Number(root, "cull_back_faces", 0) != 0;
+  scene.cullBackFaces = fs::Flag(root, "cull_back_faces", false);
   scene.visibility = fs::String(root, "visibility", scene.visibility);
   if (scene.visibility != "painter" && scene.visibility != "depth")
   {
     throw fs::ParseError(
       "'visibility' must be 'painter' or 'depth', not '" + scene.visibility + "'");
   }
-  const cv::FileNode bg = root["background"];
+  const fs::Node bg = root["background"];
   if (bg.isMap())
   {
     try
@@ -494,7 +492,7 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
   }
   scene.lighting = ReadLighting(root["lighting"]);
   scene.remesh = ReadRemesh(root["remesh"], SceneRemesh());
-  const cv::FileNode objects = root["objects"];
+  const fs::Node objects = root["objects"];
   if (!objects.empty() && !objects.isNone())
   {
     if (!objects.isSeq())
@@ -502,20 +500,20 @@ void ReadScene(const cv::FileNode& root, const std::string& baseDir, SceneDescri
       throw fs::ParseError("'objects' must be a sequence");
     }
     int i = 0;
-    for (cv::FileNodeIterator it = objects.begin(); it != objects.end(); ++it, ++i)
+    for (const fs::Node& object : objects.items())
     {
-      scene.objects.push_back(ReadObject(*it, baseDir, i, scene.remesh));
+      scene.objects.push_back(ReadObject(object, baseDir, i++, scene.remesh));
     }
   }
   out = scene;
 }
 
-bool ParseStorage(cv::FileStorage& storage, const std::string& what, const std::string& baseDir,
+bool ReadRoot(const fs::Node& root, const std::string& what, const std::string& baseDir,
   SceneDescription& scene, std::string& error)
 {
   try
   {
-    ReadScene(storage.root(), baseDir, scene);
+    ReadScene(root, baseDir, scene);
     return true;
   }
   catch (const std::exception& e)
@@ -556,9 +554,9 @@ double ProceduralTriangles(const std::string& type, int resolution)
 
 bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error)
 {
-  cv::FileStorage storage;
-  if (!fs::OpenStorage(storage, path, false, path, error) ||
-    !ParseStorage(storage, path, DirName(path), scene, error))
+  fs::Node root;
+  if (!fs::Parse(path, false, path, root, error) ||
+    !ReadRoot(root, path, DirName(path), scene, error))
   {
     return false;
   }
@@ -569,9 +567,9 @@ bool LoadScene(const std::string& path, SceneDescription& scene, std::string& er
 bool ParseScene(
   const std::string& text, const std::string& baseDir, SceneDescription& scene, std::string& error)
 {
-  cv::FileStorage storage;
-  return fs::OpenStorage(storage, text, true, "scene text", error) &&
-    ParseStorage(storage, "scene text", baseDir, scene, error);
+  fs::Node root;
+  return fs::Parse(text, true, "scene text", root, error) &&
+    ReadRoot(root, "scene text", baseDir, scene, error);
 }
 
 const char* DemoSceneText()

@@ -1,4 +1,4 @@
-// CatadioptricAR Core: scene files (YAML or JSON, through cv::FileStorage).
+// CatadioptricAR Core: scene files (YAML or JSON, read with yaml-cpp; OpenCV FileStorage files too).
 //
 // A scene names the camera (a calibration file or an inline calibration map), the output size,
 // the background, and the objects (a mesh file or a procedural object, a transform, a colour).

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/persistence.hpp>
 
 #include <cstdio>
 #include <fstream>
@@ -138,6 +139,120 @@ TEST(CalibrationIO, ErrorsNameTheProblem)
   EXPECT_FALSE(LoadCalibration(garbage, m, error));
   EXPECT_FALSE(error.empty());
   std::remove(garbage.c_str());
+}
+
+// Files written by OpenCV's own FileStorage (YAML with its %YAML:1.0 header and !!opencv-matrix,
+// and JSON with "type_id") load unchanged: the writer is OpenCV's, not the project's.
+TEST(CalibrationIO, ReadsWhatOpenCVWrites)
+{
+  const CameraModel m = Sample();
+  for (const std::string ext : { ".yaml", ".json" })
+  {
+    cv::FileStorage out(ext, cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+    ASSERT_TRUE(out.isOpened());
+    out << "image_width" << m.intrinsics.width << "image_height" << m.intrinsics.height;
+    cv::Mat K = (cv::Mat_<double>(3, 3) << m.intrinsics.fx, m.intrinsics.skew, m.intrinsics.cx, 0,
+      m.intrinsics.fy, m.intrinsics.cy, 0, 0, 1);
+    out << "camera_matrix" << K;
+    const Distortion& d = m.distortion;
+    out << "distortion_coefficients" << (cv::Mat_<double>(5, 1) << d.k1, d.k2, d.p1, d.p2, d.k3);
+    out << "mirror"
+        << "{"
+        << "type"
+        << "sphere"
+        << "center" << std::vector<double>{ 0.01, -0.02, 0.2 } << "radius" << 0.06 << "}";
+    cv::Mat P(4, 4, CV_32F); // single precision: the reader converts any element type
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        P.at<float>(r, c) = static_cast<float>(m.worldToCamera(r, c));
+      }
+    }
+    out << "world_to_camera" << P;
+    const std::string text = out.releaseAndGetString();
+    ASSERT_NE(text.find(ext == ".yaml" ? "!!opencv-matrix" : "opencv-matrix"), std::string::npos);
+    CameraModel back;
+    std::string error;
+    ASSERT_TRUE(ParseText(text, back, error)) << error << "\n" << text;
+    EXPECT_DOUBLE_EQ(back.intrinsics.fx, m.intrinsics.fx);
+    EXPECT_DOUBLE_EQ(back.intrinsics.skew, m.intrinsics.skew);
+    EXPECT_DOUBLE_EQ(back.distortion.k3, m.distortion.k3);
+    EXPECT_DOUBLE_EQ(back.mirror.radius, 0.06);
+    EXPECT_NEAR(back.worldToCamera(1, 3), m.worldToCamera(1, 3), 1e-7); // as OpenCV prints floats
+  }
+}
+
+// YAML as people write it: no header, block sequences, comments, booleans are not numbers,
+// quoted numbers are strings, a key given twice is an error, syntax errors give line and column.
+TEST(CalibrationIO, PlainYamlAndItsErrors)
+{
+  const std::string body = R"(# a camera
+image_width: 640
+image_height: 480
+camera_matrix:
+  - 500
+  - 0
+  - 319.5
+  - 0
+  - 500
+  - 239.5
+  - 0
+  - 0
+  - 1
+mirror:
+  type: sphere
+  center: [0, 0, +0.3]
+  radius: .1
+)";
+  CameraModel m;
+  std::string error;
+  ASSERT_TRUE(ParseText(body, m, error)) << error;
+  EXPECT_DOUBLE_EQ(m.intrinsics.cx, 319.5);
+  EXPECT_DOUBLE_EQ(m.mirror.radius, 0.1);
+  EXPECT_DOUBLE_EQ(m.mirror.center.z(), 0.3);
+
+  struct Case
+  {
+    std::string text;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+    { body + "image_width: 320\n", "line 18: key 'image_width' is given twice" },
+    { "image_width: \"640\"\n" + body.substr(body.find("image_height")), "'image_width'" },
+    { body + "world_to_camera: true\n", "'world_to_camera' must be a number" },
+    { body + "world_to_camera: [1, 0, 0, 0,\n  0, 1, 0]]\n", "line 19, column" },
+    { body + "  radius: 0x10\n", "" }, // any error: a duplicate or a non-number
+    { "<?xml version=\"1.0\"?>\n<opencv_storage></opencv_storage>\n", "calibration" },
+    { std::string("image_width: 640\0\n", 18), "NUL" },
+    { "a: &a [0, 0, 0, 0, 0, 0, 0, 0]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a]\n"
+      "c: &c [*b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c]\n"
+      "e: &e [*d, *d, *d, *d, *d, *d, *d, *d]\nf: &f [*e, *e, *e, *e, *e, *e, *e, *e]\n"
+      "g: &g [*f, *f, *f, *f, *f, *f, *f, *f]\nh: &h [*g, *g, *g, *g, *g, *g, *g, *g]\n",
+      "aliases are expanded" },
+  };
+  for (const Case& c : cases)
+  {
+    CameraModel before;
+    CameraModel after = before;
+    EXPECT_FALSE(ParseText(c.text, after, error)) << c.text;
+    EXPECT_NE(error.find(c.expected), std::string::npos)
+      << "error '" << error << "' lacks '" << c.expected << "'";
+    ExpectSame(before, after);
+  }
+}
+
+TEST(CalibrationIO, SavesOnlyFormatsItReads)
+{
+  std::string error;
+  EXPECT_FALSE(SaveCalibration(TempPath("camera.xml"), Sample(), error));
+  EXPECT_NE(error.find(".yaml, .yml or .json"), std::string::npos) << error;
+  const std::string upper = TempPath("CAMERA.YAML");
+  ASSERT_TRUE(SaveCalibration(upper, Sample(), error)) << error;
+  CameraModel back;
+  ASSERT_TRUE(LoadCalibration(upper, back, error)) << error;
+  ExpectSame(Sample(), back);
+  std::remove(upper.c_str());
 }
 
 TEST(CameraModel, LensMatchesOpenCVProjectPoints)

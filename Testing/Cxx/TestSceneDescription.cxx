@@ -55,6 +55,33 @@ objects:
   EXPECT_EQ(s.objects[1].scale, Vec3(2, 2, 2));
 }
 
+// Plain YAML without OpenCV's header; flags as true/false or 1/0; anything else for a flag is an
+// error that names the key.
+TEST(SceneDescription, PlainYamlAndFlags)
+{
+  const std::string text = std::string(kCamera) + R"(
+cull_back_faces: true
+lighting: { shadows: False }
+objects:
+  - type: box
+    face_colors: yes please
+)";
+  SceneDescription s;
+  std::string error;
+  EXPECT_FALSE(ParseScene(text, "", s, error));
+  EXPECT_NE(error.find("'face_colors' must be true or false"), std::string::npos) << error;
+  std::string good = text;
+  good.replace(good.find("yes please"), 10, "0");
+  ASSERT_TRUE(ParseScene(good, "", s, error)) << error;
+  EXPECT_TRUE(s.cullBackFaces);
+  EXPECT_FALSE(s.lighting.shadows);
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_FALSE(s.objects[0].faceColors);
+  good.replace(good.find("face_colors: 0"), 14, "face_colors: TRUE");
+  ASSERT_TRUE(ParseScene(good, "", s, error)) << error;
+  EXPECT_TRUE(s.objects[0].faceColors);
+}
+
 TEST(SceneDescription, ErrorsNameTheKey)
 {
   struct Case
