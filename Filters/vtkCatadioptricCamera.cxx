@@ -4,14 +4,46 @@
 #include "CameraModel.h"
 #include "SphereProjection.h"
 
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkInformationIntegerVectorKey.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 
 #include <algorithm>
 
 vtkStandardNewMacro(vtkCatadioptricCamera);
+
+namespace
+{
+// An integer-vector key that the executives copy from a filter's first input to its outputs
+// during REQUEST_INFORMATION (plain keys stay where they were set).
+class ImageSizeKey : public vtkInformationIntegerVectorKey
+{
+public:
+  ImageSizeKey()
+    : vtkInformationIntegerVectorKey("IMAGE_SIZE", "vtkCatadioptricCamera", 2)
+  {
+  }
+  void CopyDefaultInformation(
+    vtkInformation* request, vtkInformation* fromInfo, vtkInformation* toInfo) override
+  {
+    if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()) && fromInfo->Has(this))
+    {
+      this->ShallowCopy(fromInfo, toInfo);
+    }
+  }
+};
+// Deleted with the other keys by vtkInformationKeyLookup at exit, as vtkInformationKeyMacro's.
+vtkInformationIntegerVectorKey* const theImageSizeKey = new ImageSizeKey;
+} // namespace
+
+vtkInformationIntegerVectorKey* vtkCatadioptricCamera::IMAGE_SIZE()
+{
+  return theImageSizeKey;
+}
 
 namespace
 {

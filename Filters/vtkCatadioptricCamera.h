@@ -23,6 +23,7 @@
 #include <string> // for member
 
 class vtkFieldData;
+class vtkInformationIntegerVectorKey;
 class vtkMatrix4x4;
 
 namespace catar
@@ -49,6 +50,11 @@ public:
   };
   /// A short name for a status code ("valid", "inside-mirror", ...).
   static const char* GetStatusName(int status);
+
+  /// Pipeline information key: the camera's image size (width, height), set on its output by
+  /// vtkCatadioptricProjection in RequestInformation and passed down by every filter (the key
+  /// copies itself downstream), so that an image sink knows its extent before any data exists.
+  static vtkInformationIntegerVectorKey* IMAGE_SIZE();
 
   ///@{
   /// Image size in pixels: at most 32768 a side (clamped) and 2^28 pixels in all (IsValid()).

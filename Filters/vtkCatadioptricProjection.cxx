@@ -217,6 +217,23 @@ vtkCatadioptricProjection::~vtkCatadioptricProjection() = default;
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricProjection);
 
+int vtkCatadioptricProjection::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  std::string ignored; // a missing camera is reported once, by RequestData
+  if (vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(ignored))
+  {
+    const int size[2] = { camera->GetImageWidth(), camera->GetImageHeight() };
+    outInfo->Set(vtkCatadioptricCamera::IMAGE_SIZE(), size, 2);
+  }
+  else
+  {
+    outInfo->Remove(vtkCatadioptricCamera::IMAGE_SIZE());
+  }
+  return 1;
+}
+
 int vtkCatadioptricProjection::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -84,6 +84,8 @@ protected:
   vtkCatadioptricProjection();
   ~vtkCatadioptricProjection() override;
 
+  /// Announces the camera's image size downstream (vtkCatadioptricCamera::IMAGE_SIZE).
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// The camera to use for this execution (Camera, or one loaded from CalibrationFileName).

@@ -13,6 +13,7 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -153,12 +154,21 @@ int vtkCatadioptricCompositor::RequestInformation(
   }
   else
   {
-    // Without a frame the size is only known once the meshes' cameras are read; announce the
-    // best guess (ImageSize, or the last size) and set the real extent in RequestData.
-    const int w = this->ImageSize[0] > 0 ? this->ImageSize[0] : std::max(1, this->LastSize[0]);
-    const int h = this->ImageSize[1] > 0 ? this->ImageSize[1] : std::max(1, this->LastSize[1]);
-    extent[1] = w - 1;
-    extent[3] = h - 1;
+    // Without a frame: ImageSize, else the size the projection announced for its camera
+    // (vtkCatadioptricCamera::IMAGE_SIZE, passed down by the filters in between), else the
+    // last size. A wrong guess would make ParaView's image views refuse the output.
+    int size[2] = { this->ImageSize[0], this->ImageSize[1] };
+    for (int m = 0;
+         (size[0] <= 0 || size[1] <= 0) && m < inputVector[1]->GetNumberOfInformationObjects(); ++m)
+    {
+      vtkInformation* meshInfo = inputVector[1]->GetInformationObject(m);
+      if (meshInfo->Has(vtkCatadioptricCamera::IMAGE_SIZE()))
+      {
+        meshInfo->Get(vtkCatadioptricCamera::IMAGE_SIZE(), size);
+      }
+    }
+    extent[1] = (size[0] > 0 ? size[0] : std::max(1, this->LastSize[0])) - 1;
+    extent[3] = (size[1] > 0 ? size[1] : std::max(1, this->LastSize[1])) - 1;
   }
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);

@@ -10,6 +10,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricCompositor.h"
+#include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricSceneRenderer.h"
@@ -21,6 +22,7 @@
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
@@ -28,6 +30,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -1328,4 +1331,52 @@ TEST(vtkCatadioptricCompositor, MatchesTheRasteriserTriangleByTriangle)
     EXPECT_TRUE(std::equal(ref.rgba.begin(), ref.rgba.end(),
       static_cast<unsigned char*>(comp->GetOutput()->GetScalarPointer())));
   }
+}
+
+// Without a frame, the compositor's extent is known before any data: the projection announces
+// its camera's image size (vtkCatadioptricCamera::IMAGE_SIZE) and the filters in between pass it
+// on. ParaView's image views read the extent from this information; a wrong guess made them
+// print "Incorrect dimensionality" for a compositor shown without a frame.
+TEST(vtkCatadioptricCompositor, AnnouncesTheCameraImageSizeWithoutAFrame)
+{
+  auto camera = catar_test::DemoCamera();
+  camera->SetImageWidth(332);
+  camera->SetImageHeight(262);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.06, -0.32, 0.92);
+  sphere->SetRadius(0.03);
+  vtkNew<vtkCatadioptricProjection> projection;
+  projection->SetInputConnection(sphere->GetOutputPort());
+  projection->SetCamera(camera);
+  vtkNew<vtkCatadioptricLighting> lighting;
+  lighting->SetInputConnection(projection->GetOutputPort());
+  vtkNew<vtkCatadioptricPainterSort> sort;
+  sort->SetInputConnection(lighting->GetOutputPort());
+  vtkNew<vtkCatadioptricCompositor> compositor;
+  compositor->AddInputConnection(1, sort->GetOutputPort());
+  compositor->UpdateInformation();
+  int extent[6];
+  compositor->GetOutputInformation(0)->Get(
+    vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  EXPECT_EQ(extent[1], 331);
+  EXPECT_EQ(extent[3], 261);
+  // The camera changes: the announced size follows.
+  camera->SetImageWidth(166);
+  camera->SetImageHeight(131);
+  compositor->UpdateInformation();
+  compositor->GetOutputInformation(0)->Get(
+    vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  EXPECT_EQ(extent[1], 165);
+  EXPECT_EQ(extent[3], 130);
+  // And the image made has that extent.
+  compositor->Update();
+  int dims[3];
+  compositor->GetOutput()->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 166);
+  EXPECT_EQ(dims[1], 131);
+  // No camera: no size is announced (the projection reports the missing camera when it runs).
+  vtkNew<vtkCatadioptricProjection> bare;
+  bare->SetInputConnection(sphere->GetOutputPort());
+  bare->UpdateInformation();
+  EXPECT_FALSE(bare->GetOutputInformation(0)->Has(vtkCatadioptricCamera::IMAGE_SIZE()));
 }

@@ -90,6 +90,23 @@ def main():
         projected = servermanager.Fetch(projection)
         assert projected.GetPointData().GetArray("ImageCoordinates") is not None
         assert projected.GetCellData().GetArray("CentroidDepth") is not None
+
+        # Shown in a render view without a frame: no error at all (the image views used to print
+        # "Incorrect dimensionality": the extent announced before the data was 1x1).
+        from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+        messages = vtkStringOutputWindow()
+        previous = vtkOutputWindow.GetInstance()
+        vtkOutputWindow.SetInstance(messages)
+        try:
+            bare = CatadioptricCompositor(Input=[sort], Frame=None)
+            view = simple.CreateView("RenderView")
+            simple.Show(bare, view)
+            simple.Render(view)
+            shown = servermanager.Fetch(bare)
+        finally:
+            vtkOutputWindow.SetInstance(previous)
+        assert shown.GetDimensions() == dims, shown.GetDimensions()
+        assert messages.GetOutput() == "", messages.GetOutput()
     print("ParaView plugin: %d magenta pixels (ray tracer %d); 1 passed, 0 failed" % (magenta, exactMagenta))
 
 
