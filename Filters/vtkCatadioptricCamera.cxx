@@ -40,6 +40,16 @@ public:
 vtkInformationIntegerVectorKey* const theImageSizeKey = new ImageSizeKey;
 } // namespace
 
+void vtkCatadioptricCamera::SetDistortion(double k1, double k2, double p1, double p2, double k3)
+{
+  const double d[5] = { k1, k2, p1, p2, k3 };
+  if (!std::equal(d, d + 5, this->Distortion))
+  {
+    std::copy(d, d + 5, this->Distortion);
+    this->Modified();
+  }
+}
+
 vtkInformationIntegerVectorKey* vtkCatadioptricCamera::IMAGE_SIZE()
 {
   return theImageSizeKey;

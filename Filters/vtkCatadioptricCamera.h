@@ -84,12 +84,10 @@ public:
 
   ///@{
   /// OpenCV distortion coefficients k1, k2, p1, p2, k3.
-  vtkSetVectorMacro(Distortion, double, 5);
-  void SetDistortion(double k1, double k2, double p1, double p2, double k3)
-  {
-    const double d[5] = { k1, k2, p1, p2, k3 };
-    this->SetDistortion(d);
-  }
+  // Written out rather than vtkSetVectorMacro: its unsized `const double data[]` made the Python
+  // wrapping read past a scalar argument (SetDistortion(1) crashed).
+  void SetDistortion(double k1, double k2, double p1, double p2, double k3);
+  void SetDistortion(const double d[5]) { this->SetDistortion(d[0], d[1], d[2], d[3], d[4]); }
   vtkGetVectorMacro(Distortion, double, 5);
   ///@}
 

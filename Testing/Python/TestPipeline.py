@@ -135,6 +135,20 @@ class PipelineTest(unittest.TestCase):
             self.assertIn("camera", renderer.GetLastError())
 
 
+    def test_vector_setters_refuse_scalars(self):
+        # SetDistortion(1) read past its argument (an unsized vtkSetVectorMacro) and crashed.
+        cam = demo_camera()
+        for name, size in (("SetDistortion", 5), ("SetFocalLength", 2),
+                           ("SetPrincipalPoint", 2), ("SetMirrorCenter", 3)):
+            for bad in ((1,), ("",), (None,), ([1.0] * (size - 1),)):
+                with self.assertRaises(TypeError, msg="%s%r" % (name, bad)):
+                    getattr(cam, name)(*bad)
+        cam.SetDistortion([0.1, 0.2, 0.0, 0.0, 0.3])
+        self.assertEqual(cam.GetDistortion(), (0.1, 0.2, 0.0, 0.0, 0.3))
+        cam.SetDistortion(0.0, 0.0, 0.0, 0.0, 0.0)
+        self.assertEqual(cam.GetDistortion(), (0.0,) * 5)
+
+
 if __name__ == "__main__":
     result = unittest.main(exit=False, verbosity=2).result
     sys.exit(0 if result.wasSuccessful() and result.testsRun > 0 else 1)
