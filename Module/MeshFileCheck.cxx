@@ -609,6 +609,10 @@ bool CheckMeshFile(const std::string& path, std::string& error)
   {
     return CheckStlFile(path, error);
   }
+  if (ext == ".vtp")
+  {
+    return CheckVtpFile(path, error);
+  }
   if (ext == ".obj")
   {
     return CheckObjFile(path, error);

@@ -31,7 +31,13 @@ bool CheckObjFile(const std::string& path, std::string& error);
 /// STL files pass.
 bool CheckStlFile(const std::string& path, std::string& error);
 
-/// The check for a file by its extension (.ply, .vtk, .stl, .obj; other files only against
+/// Checks a VTK XML PolyData file (.vtp) as vtkXMLPolyDataReader will read it: every array of
+/// every piece holds the values its piece announces (ASCII numbers counted; binary headers read,
+/// compressed blocks decompressed to the sizes their table gives), and the cell offsets rise and
+/// end inside the connectivity. Implemented in VtpFileCheck.cxx.
+bool CheckVtpFile(const std::string& path, std::string& error);
+
+/// The check for a file by its extension (.ply, .vtk, .vtp, .stl, .obj; other files only against
 /// kMaxMeshFileBytes). False with a sentence in `error`.
 bool CheckMeshFile(const std::string& path, std::string& error);
 } // namespace catar

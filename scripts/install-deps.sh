@@ -9,7 +9,7 @@ packages=(build-essential cmake git pkg-config
   paraview paraview-dev python3-paraview qtbase5-dev qttools5-dev libqt5svg5-dev
   libqt5opengl5-dev qtxmlpatterns5-dev-tools libqt5x11extras5-dev
   libcgal-dev libeigen3-dev libopencv-dev libopenmesh-dev libgtest-dev
-  libbenchmark-dev libembree-dev libyaml-cpp-dev xvfb xauth
+  libbenchmark-dev libembree-dev libyaml-cpp-dev zlib1g-dev liblzma-dev xvfb xauth
   libdouble-conversion-dev liblz4-dev libutfcpp-dev libopenmpi-dev libglew-dev)
 if [[ "${1:-}" == "--if-missing" ]]; then
   missing=0
