@@ -1,5 +1,6 @@
 #include "vtkCatadioptricLighting.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricLightingSupport.h"
 
 #include "CameraModel.h"
@@ -239,7 +240,7 @@ vtkCatadioptricLighting::vtkCatadioptricLighting()
   , Internal(new Internals)
 {
   this->SetNumberOfInputPorts(2);
-  this->SetInputColorArrayName("Colors");
+  this->SetInputColorArrayName(vtkCatadioptricArrayNames::Colors);
   this->Property->SetSpecular(0.0);
 }
 
@@ -395,10 +396,10 @@ int vtkCatadioptricLighting::RequestData(
     return 1;
   }
   vtkNew<vtkCatadioptricCamera> camera;
-  vtkDataArray* mirror = input->GetPointData()->GetArray("MirrorPoint");
-  vtkDataArray* pointVisible = input->GetPointData()->GetArray("Visible");
+  vtkDataArray* mirror = input->GetPointData()->GetArray(vtkCatadioptricArrayNames::MirrorPoint);
+  vtkDataArray* pointVisible = input->GetPointData()->GetArray(vtkCatadioptricArrayNames::Visible);
   vtkDataArray* centroidMirror = input->GetCellData()->GetArray("CentroidMirrorPoint");
-  vtkDataArray* cellVisible = input->GetCellData()->GetArray("Visible");
+  vtkDataArray* cellVisible = input->GetCellData()->GetArray(vtkCatadioptricArrayNames::Visible);
   if (!camera->ReadFromFieldData(input->GetFieldData()) || !mirror || !pointVisible ||
     !cellVisible || (this->ShadingMode == FLAT && !centroidMirror))
   {
@@ -484,7 +485,7 @@ int vtkCatadioptricLighting::RequestData(
   shading.ShadowScene = shadowScene;
 
   vtkNew<vtkUnsignedCharArray> colors;
-  colors->SetName("Colors");
+  colors->SetName(vtkCatadioptricArrayNames::Colors);
   colors->SetNumberOfComponents(4);
   if (mode == GOURAUD)
   {
@@ -600,8 +601,8 @@ int vtkCatadioptricLighting::RequestData(
         batch.Add(p, n, cameraToWorld * (V3(mp) - cameraT), rgba, o);
       }
     });
-    output->GetCellData()->RemoveArray("Colors");
-    output->GetPointData()->RemoveArray("Colors");
+    output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
+    output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
     output->GetPointData()->AddArray(colors);
   }
   else
@@ -669,8 +670,8 @@ int vtkCatadioptricLighting::RequestData(
           }
         }
       });
-    output->GetPointData()->RemoveArray("Colors");
-    output->GetCellData()->RemoveArray("Colors");
+    output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
+    output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
     output->GetCellData()->AddArray(colors);
   }
   this->UpdateProgress(1.0);

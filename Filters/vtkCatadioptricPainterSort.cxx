@@ -1,5 +1,6 @@
 #include "vtkCatadioptricPainterSort.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricDepthOrder.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
@@ -274,7 +275,8 @@ int vtkCatadioptricPainterSort::RequestData(
     return 0;
   }
   const vtkIdType nCells = input->GetNumberOfCells();
-  vtkDataArray* depthArray = input->GetCellData()->GetArray("CentroidDepth");
+  vtkDataArray* depthArray =
+    input->GetCellData()->GetArray(vtkCatadioptricArrayNames::CentroidDepth);
   if (nCells > 0 &&
     (!depthArray || depthArray->GetNumberOfComponents() != 1 ||
       depthArray->GetNumberOfTuples() != nCells))
@@ -283,8 +285,8 @@ int vtkCatadioptricPainterSort::RequestData(
                   "before vtkCatadioptricPainterSort.");
     return 0;
   }
-  vtkUnsignedCharArray* visible =
-    vtkUnsignedCharArray::SafeDownCast(input->GetCellData()->GetArray("Visible"));
+  vtkUnsignedCharArray* visible = vtkUnsignedCharArray::SafeDownCast(
+    input->GetCellData()->GetArray(vtkCatadioptricArrayNames::Visible));
   if (this->DropInvisibleCells && nCells > 0 && !visible)
   {
     vtkErrorMacro("DropInvisibleCells is on but the input has no uint8 Visible cell array.");
@@ -340,14 +342,16 @@ int vtkCatadioptricPainterSort::RequestData(
   // The depths come back from the sorted keys, in order, instead of from random places.
   if (depthDoubles)
   {
-    extras.Depths = vtkDoubleArray::SafeDownCast(outCD->GetArray("CentroidDepth"))->GetPointer(0);
+    extras.Depths =
+      vtkDoubleArray::SafeDownCast(outCD->GetArray(vtkCatadioptricArrayNames::CentroidDepth))
+        ->GetPointer(0);
   }
   // OriginalCellId: each cell's index in the input, unless the input already carries the ids of
   // an earlier stage (then they are gathered with the other cell data).
-  if (!input->GetCellData()->GetArray("OriginalCellId"))
+  if (!input->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId))
   {
     vtkNew<vtkIdTypeArray> original;
-    original->SetName("OriginalCellId");
+    original->SetName(vtkCatadioptricArrayNames::OriginalCellId);
     original->SetNumberOfTuples(nOut);
     extras.OriginalIds = original->GetPointer(0);
     outCD->AddArray(original);

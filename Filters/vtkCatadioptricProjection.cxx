@@ -3,6 +3,7 @@
 #include "CameraModel.h"
 #include "SphereProjection.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
@@ -269,21 +270,21 @@ int vtkCatadioptricProjection::RequestData(
 
   const vtkIdType nPts = input->GetNumberOfPoints();
   vtkNew<vtkDoubleArray> pixels;
-  pixels->SetName("ImageCoordinates");
+  pixels->SetName(vtkCatadioptricArrayNames::ImageCoordinates);
   pixels->SetNumberOfComponents(2);
   pixels->SetNumberOfTuples(nPts);
   vtkNew<vtkDoubleArray> mirror;
-  mirror->SetName("MirrorPoint");
+  mirror->SetName(vtkCatadioptricArrayNames::MirrorPoint);
   mirror->SetNumberOfComponents(3);
   mirror->SetNumberOfTuples(nPts);
   vtkNew<vtkDoubleArray> path;
-  path->SetName("PathLength");
+  path->SetName(vtkCatadioptricArrayNames::PathLength);
   path->SetNumberOfTuples(nPts);
   vtkNew<vtkUnsignedCharArray> status;
-  status->SetName("ProjectionStatus");
+  status->SetName(vtkCatadioptricArrayNames::ProjectionStatus);
   status->SetNumberOfTuples(nPts);
   vtkNew<vtkUnsignedCharArray> pvis;
-  pvis->SetName("Visible");
+  pvis->SetName(vtkCatadioptricArrayNames::Visible);
   pvis->SetNumberOfTuples(nPts);
 
   this->UpdateProgress(0.0);
@@ -365,14 +366,14 @@ int vtkCatadioptricProjection::RequestData(
 
   const vtkIdType nCells = input->GetNumberOfCells();
   vtkNew<vtkDoubleArray> depth;
-  depth->SetName("CentroidDepth");
+  depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
   depth->SetNumberOfTuples(nCells);
   vtkNew<vtkDoubleArray> centroidMirror;
   centroidMirror->SetName("CentroidMirrorPoint");
   centroidMirror->SetNumberOfComponents(3);
   centroidMirror->SetNumberOfTuples(nCells);
   vtkNew<vtkUnsignedCharArray> cvis;
-  cvis->SetName("Visible");
+  cvis->SetName(vtkCatadioptricArrayNames::Visible);
   cvis->SetNumberOfTuples(nCells);
   // Zeros for vertices, lines and strips; the polygons' values are all written below.
   const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();

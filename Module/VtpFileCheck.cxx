@@ -359,6 +359,13 @@ std::string ReadRaw(const std::string& text, std::size_t& pos, std::uint64_t byt
 // Decompresses one block and checks its size.
 void Decompress(const File& f, const std::string& in, std::string& out, std::uint64_t expected)
 {
+  // zlib expands at most 1032 times, LZ4 at most 255 times: a larger claim is a lie, refused
+  // before its buffer is allocated.
+  const std::uint64_t ratio = f.compressor == "zlib" ? 1032 : f.compressor == "lz4" ? 256 : 0;
+  if (ratio != 0 && expected > Mul(in.size(), ratio) + 64)
+  {
+    throw VtpError("a compressed block claims more bytes than its compressor can make of it");
+  }
   out.resize(static_cast<std::size_t>(expected));
   bool ok = false;
   if (f.compressor == "zlib")
@@ -675,6 +682,51 @@ void CheckCells(const File& f, const Element& piece, const char* section, std::u
   CheckArray(f, *connectivity, static_cast<std::uint64_t>(previous), 1, nullptr);
 }
 
+// Every DataArray anywhere, whatever the counts say of it (the reader sets up arrays of empty
+// pieces too, naming each component: a component count of 2^32 keeps it busy for minutes).
+void CheckArrayHeaders(const Element& e)
+{
+  if (e.name == "DataArray")
+  {
+    const std::string* type = e.Attribute("type");
+    if (!type || WordSize(*type) == 0)
+    {
+      throw VtpError(ArrayName(e) + " has an unknown type '" + (type ? *type : "") + "'");
+    }
+    const std::uint64_t comps = Count(e, "NumberOfComponents", 1);
+    if (comps == 0 || comps > 1024)
+    {
+      throw VtpError(ArrayName(e) + ": NumberOfComponents must be in [1, 1024]");
+    }
+    Count(e, "NumberOfTuples", 0);
+    Count(e, "offset", 0);
+  }
+  for (const Element& child : e.children)
+  {
+    CheckArrayHeaders(child);
+  }
+}
+
+// Two arrays of one name in <PointData>, <CellData> or <FieldData>: the data set keeps only the
+// second, and the reader, counting two, then reads into an array that is not there.
+void CheckUniqueNames(const Element& data)
+{
+  std::vector<std::string> names;
+  for (const Element& array : data.children)
+  {
+    const std::string* name = array.Attribute("Name");
+    if (array.name != "DataArray" || !name || name->empty())
+    {
+      continue;
+    }
+    if (std::find(names.begin(), names.end(), *name) != names.end())
+    {
+      throw VtpError("<" + data.name + "> has two arrays named '" + *name + "'");
+    }
+    names.push_back(*name);
+  }
+}
+
 void CheckPiece(const File& f, const Element& piece)
 {
   const std::uint64_t points = Count(piece, "NumberOfPoints", 0);
@@ -711,6 +763,7 @@ void CheckPiece(const File& f, const Element& piece)
   {
     if (const Element* data = Child(piece, name))
     {
+      CheckUniqueNames(*data);
       for (const Element& array : data->children)
       {
         if (array.name == "DataArray")
@@ -790,6 +843,7 @@ bool CheckVtpFile(const std::string& path, std::string& error)
       }
       f.appendedBase64 = xml.appendedEncoding == "base64";
     }
+    CheckArrayHeaders(root);
     const Element* polyData = Child(root, "PolyData");
     if (!polyData)
     {
@@ -803,6 +857,7 @@ bool CheckVtpFile(const std::string& path, std::string& error)
       }
       else if (child.name == "FieldData")
       {
+        CheckUniqueNames(child);
         for (const Element& array : child.children)
         {
           if (array.name == "DataArray")

@@ -3,6 +3,7 @@
 #include "CameraModel.h"
 #include "Rasterizer.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricImageSupport.h"
@@ -114,7 +115,7 @@ vtkCatadioptricCompositor::vtkCatadioptricCompositor()
   : Bins(new vtkCatadioptricTriangleBins)
 {
   this->SetNumberOfInputPorts(3);
-  this->SetColorArrayName("Colors");
+  this->SetColorArrayName(vtkCatadioptricArrayNames::Colors);
 }
 
 vtkCatadioptricCompositor::~vtkCatadioptricCompositor()
@@ -295,7 +296,7 @@ int vtkCatadioptricCompositor::RequestData(
   output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
   vtkUnsignedCharArray* outScalars =
     vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
-  outScalars->SetName("RGBA");
+  outScalars->SetName(vtkCatadioptricArrayNames::RGBA);
   unsigned char* out = outScalars->GetPointer(0);
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
 
@@ -358,9 +359,9 @@ int vtkCatadioptricCompositor::RequestData(
     vtkCatadioptricTriangleBins::Mesh in;
     in.Data = mesh;
     in.Key = m;
-    in.Pixels = mesh->GetPointData()->GetArray("ImageCoordinates");
-    in.Visible = mesh->GetCellData()->GetArray("Visible");
-    in.CentroidDepth = mesh->GetCellData()->GetArray("CentroidDepth");
+    in.Pixels = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::ImageCoordinates);
+    in.Visible = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::Visible);
+    in.CentroidDepth = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::CentroidDepth);
     if (!in.Pixels || in.Pixels->GetNumberOfComponents() != 2 || !in.Visible || !in.CentroidDepth)
     {
       vtkErrorMacro("Mesh " << m
@@ -371,7 +372,7 @@ int vtkCatadioptricCompositor::RequestData(
     // DEPTH_BUFFER: the per-vertex depth.
     if (depthMode)
     {
-      in.PathLength = mesh->GetPointData()->GetArray("PathLength");
+      in.PathLength = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::PathLength);
       if (!in.PathLength || in.PathLength->GetNumberOfComponents() != 1 ||
         in.PathLength->GetNumberOfTuples() != mesh->GetNumberOfPoints())
       {
@@ -385,7 +386,7 @@ int vtkCatadioptricCompositor::RequestData(
     // OutputVisibleTriangle: the cells' original ids, when the mesh has them.
     if (wantIds)
     {
-      in.OriginalIds = mesh->GetCellData()->GetArray("OriginalCellId");
+      in.OriginalIds = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
       if (in.OriginalIds &&
         (in.OriginalIds->GetNumberOfComponents() != 1 ||
           in.OriginalIds->GetNumberOfTuples() != mesh->GetNumberOfCells()))
@@ -469,7 +470,7 @@ int vtkCatadioptricCompositor::RequestData(
   if (wantIds)
   {
     visibleTriangle = KeptArray(this->OutputIds, 1, nPixels);
-    visibleTriangle->SetName("VisibleTriangle");
+    visibleTriangle->SetName(vtkCatadioptricArrayNames::VisibleTriangle);
     output->GetPointData()->AddArray(visibleTriangle);
     if constexpr (std::is_same<vtkTypeInt64, catar::RasterId>::value)
     {

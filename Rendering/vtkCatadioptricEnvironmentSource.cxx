@@ -3,6 +3,7 @@
 #include "Environment.h"
 #include "SphereProjection.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkDataArray.h"
@@ -124,7 +125,7 @@ int vtkCatadioptricEnvironmentSource::RequestData(
   output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
   vtkUnsignedCharArray* scalars =
     vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
-  scalars->SetName("RGBA");
+  scalars->SetName(vtkCatadioptricArrayNames::RGBA);
 
   const catar::SphereProjector projector(camera->GetModel());
   catar::RoomEnvironment room;

@@ -2,6 +2,7 @@
 
 #include "CameraModel.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -177,7 +178,7 @@ bool vtkCatadioptricImageSupport::ReadTextures(vtkInformationVector* textures, b
 vtkDataArray* vtkCatadioptricImageSupport::TextureCoordinates(vtkPolyData* mesh)
 {
   vtkDataArray* t = mesh->GetPointData()->GetTCoords();
-  for (const char* name : { "TCoords", "TextureCoordinates" })
+  for (const char* name : { "TCoords", vtkCatadioptricArrayNames::TextureCoordinates })
   {
     if (!t)
     {
@@ -267,7 +268,7 @@ vtkSmartPointer<vtkImageData> vtkCatadioptricImageSupport::ReadImageFile(
 bool vtkCatadioptricImageSupport::TextureIndex(vtkPolyData* mesh, int& index, std::string& error)
 {
   index = 0;
-  vtkDataArray* array = mesh->GetFieldData()->GetArray("TextureIndex");
+  vtkDataArray* array = mesh->GetFieldData()->GetArray(vtkCatadioptricArrayNames::TextureIndex);
   if (!array)
   {
     return true;

@@ -3,6 +3,7 @@
 #include "RayTracer.h"
 #include "SphereProjection.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricImageSupport.h"
@@ -97,7 +98,7 @@ vtkCatadioptricRayTracer::vtkCatadioptricRayTracer()
   : Internal(new Internals)
 {
   this->SetNumberOfInputPorts(3);
-  this->SetColorArrayName("Colors");
+  this->SetColorArrayName(vtkCatadioptricArrayNames::Colors);
 }
 
 vtkCatadioptricRayTracer::~vtkCatadioptricRayTracer()
@@ -253,7 +254,7 @@ int vtkCatadioptricRayTracer::RequestData(
   output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
   vtkUnsignedCharArray* outScalars =
     vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
-  outScalars->SetName("RGBA");
+  outScalars->SetName(vtkCatadioptricArrayNames::RGBA);
   unsigned char* out = outScalars->GetPointer(0);
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
   if (frame)
@@ -313,7 +314,8 @@ int vtkCatadioptricRayTracer::RequestData(
       mesh->GetPoint(i, p);
       tm.points[i] = V3(p);
     }
-    vtkDataArray* original = mesh->GetCellData()->GetArray("OriginalCellId");
+    vtkDataArray* original =
+      mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
     const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
     std::vector<vtkIdType> triangleCells;
     vtkCellArray* polys = mesh->GetPolys();
@@ -489,7 +491,7 @@ int vtkCatadioptricRayTracer::RequestData(
   if (this->OutputVisibleTriangle)
   {
     vtkNew<vtkTypeInt64Array> visible;
-    visible->SetName("VisibleTriangle");
+    visible->SetName(vtkCatadioptricArrayNames::VisibleTriangle);
     visible->SetNumberOfTuples(nPixels);
     output->GetPointData()->AddArray(visible);
     idData = visible->GetPointer(0) +

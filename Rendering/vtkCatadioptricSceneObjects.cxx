@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "vtkCallbackCommand.h"
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricMeshCheck.h"
@@ -222,7 +223,7 @@ void Colorize(vtkPolyData* mesh, const catar::SceneObject& o)
     { 0.15, 0.35, 0.9 }, { 0.95, 0.85, 0.1 }, { 0.1, 0.8, 0.85 }, { 0.8, 0.2, 0.8 } };
   const vtkIdType n = mesh->GetNumberOfCells();
   vtkNew<vtkUnsignedCharArray> colors;
-  colors->SetName("Colors");
+  colors->SetName(vtkCatadioptricArrayNames::Colors);
   colors->SetNumberOfComponents(4);
   colors->SetNumberOfTuples(n);
   vtkNew<vtkIdList> ids;

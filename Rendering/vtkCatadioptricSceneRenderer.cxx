@@ -4,6 +4,7 @@
 #include "SceneDescription.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
@@ -227,7 +228,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   {
     const catar::SceneObject& o = scene.objects[i];
     vtkNew<vtkIntArray> index;
-    index->SetName("TextureIndex");
+    index->SetName(vtkCatadioptricArrayNames::TextureIndex);
     meshes[i]->GetFieldData()->AddArray(index);
     if (o.texture.empty())
     {
@@ -280,7 +281,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
       auto joined = vtkSmartPointer<vtkPolyData>::New();
       append->ExecuteAppend(joined, parts.data(), static_cast<int>(parts.size()));
       vtkNew<vtkIntArray> index;
-      index->SetName("TextureIndex");
+      index->SetName(vtkCatadioptricArrayNames::TextureIndex);
       index->InsertNextValue(-1);
       joined->GetFieldData()->AddArray(index);
       groups.push_back(joined);

@@ -65,6 +65,10 @@ vtkSmartPointer<vtkPolyData> RichMesh()
     cellValue->InsertNextValue(static_cast<float>(i));
   }
   mesh->GetCellData()->AddArray(cellValue);
+  vtkNew<vtkFloatArray> second;
+  second->DeepCopy(cellValue);
+  second->SetName("Second");
+  mesh->GetCellData()->AddArray(second);
   vtkNew<vtkIntArray> field;
   field->SetName("Field");
   field->SetNumberOfComponents(2);
@@ -158,6 +162,12 @@ TEST(VtpFileCheck, LyingFilesAreRefused)
     { vtkXMLWriter::Ascii, vtkXMLWriter::NONE, "</PolyData>", "</Poly>", "closed by" },
     { vtkXMLWriter::Ascii, vtkXMLWriter::NONE, "type=\"PolyData\"", "type=\"ImageData\"",
       "not a PolyData file" },
+    // Two cell arrays of one name: the reader read into the one the data set had dropped.
+    { vtkXMLWriter::Ascii, vtkXMLWriter::NONE, "Name=\"Second\"", "Name=\"CellValue\"",
+      "<CellData> has two arrays named 'CellValue'" },
+    // An empty piece whose array claims 2^32 components: the reader named each one, for minutes.
+    { vtkXMLWriter::Appended, vtkXMLWriter::ZLIB, "NumberOfComponents=\"3\"",
+      "NumberOfComponents=\"4294967296\"", "NumberOfComponents must be in [1, 1024]" },
   };
   for (const Case& c : cases)
   {
