@@ -31,6 +31,10 @@ constexpr const char* Colors = "Colors";
 constexpr const char* TextureCoordinates = "TextureCoordinates";
 /// Field data, int: which texture of the compositor's port 2 a mesh uses (-1: none).
 constexpr const char* TextureIndex = "TextureIndex";
+/// Point data, integer: which of the mesh's "Materials" each point has (vtkCatadioptricLighting).
+constexpr const char* MaterialIndex = "MaterialIndex";
+/// Field data, 14 doubles a material (vtkCatadioptricLightingSupport::ReadMaterials).
+constexpr const char* Materials = "Materials";
 /// Image point data, RGBA unsigned char: the images made.
 constexpr const char* RGBA = "RGBA";
 /// Image point data, int64: the triangle drawn at each pixel (-1: none).

@@ -71,9 +71,10 @@ public:
   struct Settings
   {
     const catar::LightSet* Lights;
-    catar::Material Material;
+    vtkCatadioptricLightingSupport::MaterialEntry Default;
+    // A material per point (MaterialIndex into Materials), or none: Default everywhere.
+    const std::vector<vtkCatadioptricLightingSupport::MaterialEntry>* Materials;
     catar::Vec3 GlobalAmbient;
-    double AmbientK, DiffuseK, Opacity;
     bool BaseColours, TwoSided;
     const catar::RayScene* ShadowScene; // null: no shadows
   };
@@ -82,20 +83,29 @@ public:
     : S(settings)
     , Lit(static_cast<size_t>(W) * settings.Lights->size(), 1)
   {
-    std::fill(this->M, this->M + W, settings.Material);
+    std::fill(this->M, this->M + W, settings.Default.Material);
+    std::fill(this->Opacity, this->Opacity + W, settings.Default.Opacity);
   }
   ~ShadeBatch() { this->Flush(); }
 
-  // Point p (normal n, viewer: world), base colour rgba, whose colour goes to out[0..3].
+  // Point p (normal n, viewer: world), base colour rgba, material (an index into the settings'
+  // Materials, or -1: the default), whose colour goes to out[0..3].
   void Add(const catar::Vec3& p, const catar::Vec3& n, const catar::Vec3& viewer,
-    const float rgba[4], unsigned char* out)
+    const float rgba[4], unsigned char* out, int material = -1)
   {
     const int i = this->Count;
+    const vtkCatadioptricLightingSupport::MaterialEntry& m =
+      material < 0 ? this->S.Default : (*this->S.Materials)[material];
+    if (material >= 0)
+    {
+      this->M[i] = m.Material;
+      this->Opacity[i] = m.Opacity;
+    }
     if (this->S.BaseColours)
     {
       const catar::Vec3 c(rgba[0], rgba[1], rgba[2]);
-      this->M[i].ambient = this->S.AmbientK * c;
-      this->M[i].diffuse = this->S.DiffuseK * c;
+      this->M[i].ambient = m.AmbientK * c;
+      this->M[i].diffuse = m.DiffuseK * c;
     }
     this->P[i] = p;
     this->N[i] = (this->S.TwoSided && n.dot(viewer - p) < 0) ? catar::Vec3(-n) : n;
@@ -124,7 +134,7 @@ public:
       o[0] = ToByte(colour[i].x());
       o[1] = ToByte(colour[i].y());
       o[2] = ToByte(colour[i].z());
-      o[3] = ToByte(this->S.Opacity * this->Alpha[i]);
+      o[3] = ToByte(this->Opacity[i] * this->Alpha[i]);
     }
     this->Count = 0;
   }
@@ -136,6 +146,7 @@ private:
   int Count = 0;
   catar::Vec3 P[W], N[W], Viewer[W];
   catar::Material M[W];
+  double Opacity[W];
   float Alpha[W];
   unsigned char* Out[W];
 };
@@ -411,11 +422,22 @@ int vtkCatadioptricLighting::RequestData(
   const catar::Mat3 cameraToWorld = model.worldToCamera.topLeftCorner<3, 3>().transpose();
   const catar::Vec3 cameraT = model.worldToCamera.topRightCorner<3, 1>();
 
-  // Material and base colours.
+  // Material and base colours; a material per point when the input carries a table of them.
   vtkProperty* prop = this->Property;
   const catar::Material material =
     vtkCatadioptricLightingSupport::ConvertProperty(prop, this->Emission);
   const double opacity = prop->GetOpacity();
+  std::vector<vtkCatadioptricLightingSupport::MaterialEntry> materials;
+  vtkDataArray* materialIndex = nullptr;
+  {
+    std::string error;
+    if (!vtkCatadioptricLightingSupport::ReadMaterials(
+          input, this->Emission, materials, materialIndex, error))
+    {
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+  }
   const float solid[4] = { static_cast<float>(prop->GetDiffuseColor()[0]),
     static_cast<float>(prop->GetDiffuseColor()[1]), static_cast<float>(prop->GetDiffuseColor()[2]),
     1.0f };
@@ -424,8 +446,17 @@ int vtkCatadioptricLighting::RequestData(
     vtkCatadioptricLightingSupport::ConvertLights(this->Lights);
   const catar::Vec3 globalAmbient = V3(this->GlobalAmbient);
   const int mode = this->ShadingMode;
-  const std::string lightingError = catar::ValidateLighting(
+  std::string lightingError = catar::ValidateLighting(
     lightList, material, globalAmbient, prop->GetAmbient(), prop->GetDiffuse(), opacity);
+  for (size_t m = 0; m < materials.size() && lightingError.empty(); ++m)
+  {
+    lightingError = catar::ValidateLighting(lightList, materials[m].Material, globalAmbient,
+      materials[m].AmbientK, materials[m].DiffuseK, materials[m].Opacity);
+    if (!lightingError.empty())
+    {
+      lightingError = "material " + std::to_string(m) + ": " + lightingError;
+    }
+  }
   if (!lightingError.empty())
   {
     vtkErrorMacro("Cannot shade: " << lightingError << ".");
@@ -475,11 +506,9 @@ int vtkCatadioptricLighting::RequestData(
   // in batches (ShadeBatch), one per thread.
   ShadeBatch::Settings shading;
   shading.Lights = &lights;
-  shading.Material = material;
+  shading.Default = { material, prop->GetAmbient(), prop->GetDiffuse(), opacity };
+  shading.Materials = &materials;
   shading.GlobalAmbient = globalAmbient;
-  shading.AmbientK = prop->GetAmbient();
-  shading.DiffuseK = prop->GetDiffuse();
-  shading.Opacity = opacity;
   shading.BaseColours = base.HasArray();
   shading.TwoSided = this->TwoSidedLighting;
   shading.ShadowScene = shadowScene;
@@ -598,7 +627,8 @@ int vtkCatadioptricLighting::RequestData(
           std::copy(&pointBase[4 * i], &pointBase[4 * i] + 4, rgba);
         }
         // The viewer: the reflection point, camera to world (CameraModel::CameraToWorld).
-        batch.Add(p, n, cameraToWorld * (V3(mp) - cameraT), rgba, o);
+        batch.Add(p, n, cameraToWorld * (V3(mp) - cameraT), rgba, o,
+          materialIndex ? static_cast<int>(materialIndex->GetComponent(i, 0)) : -1);
       }
     });
     output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
@@ -653,20 +683,23 @@ int vtkCatadioptricLighting::RequestData(
             }
           }
           unsigned char* o = out + 4 * cellId;
+          // A cell's material is its first point's.
+          const int m =
+            materialIndex ? static_cast<int>(materialIndex->GetComponent(pts[0], 0)) : -1;
           if (mode == FLAT)
           {
             const double len = area.norm();
             const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
             double cm[3];
             centroidMirror->GetTuple(cellId, cm);
-            batch.Add(centroid, normal, cameraToWorld * (V3(cm) - cameraT), rgba, o);
+            batch.Add(centroid, normal, cameraToWorld * (V3(cm) - cameraT), rgba, o, m);
           }
           else
           {
             o[0] = ToByte(rgba[0]);
             o[1] = ToByte(rgba[1]);
             o[2] = ToByte(rgba[2]);
-            o[3] = ToByte(opacity * rgba[3]);
+            o[3] = ToByte((m < 0 ? opacity : materials[m].Opacity) * rgba[3]);
           }
         }
       });

@@ -2,17 +2,22 @@
 
 #include "RayScene.h"
 
+#include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdint>
 
 namespace
@@ -73,6 +78,88 @@ catar::Material vtkCatadioptricLightingSupport::ConvertProperty(
   material.emission = V3(emission);
   material.shininess = prop->GetSpecularPower();
   return material;
+}
+
+bool vtkCatadioptricLightingSupport::ReadMaterials(vtkPolyData* mesh, const double emission[3],
+  std::vector<MaterialEntry>& materials, vtkDataArray*& index, std::string& error)
+{
+  materials.clear();
+  index = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::MaterialIndex);
+  vtkDataArray* table = mesh->GetFieldData()->GetArray(vtkCatadioptricArrayNames::Materials);
+  if (!index && !table)
+  {
+    return true;
+  }
+  if (!index || !table)
+  {
+    error = std::string("A mesh with ") +
+      (index ? "a point array 'MaterialIndex' needs the field array 'Materials'"
+             : "a field array 'Materials' needs the point array 'MaterialIndex'") +
+      " too.";
+    return false;
+  }
+  if (table->GetNumberOfComponents() != MaterialComponents || index->GetNumberOfComponents() != 1 ||
+    index->GetNumberOfTuples() != mesh->GetNumberOfPoints())
+  {
+    error = "'Materials' must have " + std::to_string(MaterialComponents) +
+      " components and 'MaterialIndex' one value a point.";
+    return false;
+  }
+  const vtkIdType count = table->GetNumberOfTuples();
+  for (vtkIdType m = 0; m < count; ++m)
+  {
+    double v[MaterialComponents];
+    table->GetTuple(m, v);
+    MaterialEntry e;
+    e.AmbientK = v[0];
+    e.DiffuseK = v[1];
+    e.Material.ambient = v[0] * catar::Vec3(v[4], v[5], v[6]);
+    e.Material.diffuse = v[1] * catar::Vec3(v[7], v[8], v[9]);
+    e.Material.specular = v[2] * catar::Vec3(v[10], v[11], v[12]);
+    e.Material.shininess = v[3];
+    e.Material.emission = catar::Vec3(emission[0], emission[1], emission[2]);
+    e.Opacity = v[13];
+    materials.push_back(e);
+  }
+  double range[2];
+  index->GetRange(range, 0);
+  if (mesh->GetNumberOfPoints() > 0 &&
+    !(range[0] >= 0 && range[1] < static_cast<double>(count) && range[0] == std::floor(range[0])))
+  {
+    error = "'MaterialIndex' names material " +
+      std::to_string(static_cast<long long>(range[0] < 0 ? range[0] : range[1])) +
+      ", but 'Materials' has " + std::to_string(count) + ".";
+    return false;
+  }
+  for (vtkIdType i = 0; i < index->GetNumberOfTuples(); ++i)
+  {
+    const double m = index->GetComponent(i, 0);
+    if (m != std::floor(m))
+    {
+      error = "'MaterialIndex' must hold whole numbers.";
+      return false;
+    }
+  }
+  return true;
+}
+
+void vtkCatadioptricLightingSupport::WriteMaterials(
+  vtkPolyData* mesh, const std::vector<vtkProperty*>& properties)
+{
+  vtkNew<vtkDoubleArray> table;
+  table->SetName(vtkCatadioptricArrayNames::Materials);
+  table->SetNumberOfComponents(MaterialComponents);
+  for (vtkProperty* p : properties)
+  {
+    double v[MaterialComponents] = { p->GetAmbient(), p->GetDiffuse(), p->GetSpecular(),
+      p->GetSpecularPower() };
+    p->GetAmbientColor(v + 4);
+    p->GetDiffuseColor(v + 7);
+    p->GetSpecularColor(v + 10);
+    v[13] = p->GetOpacity();
+    table->InsertNextTuple(v);
+  }
+  mesh->GetFieldData()->AddArray(table);
 }
 
 std::vector<catar::Vec3> vtkCatadioptricLightingSupport::VertexNormals(vtkPolyData* mesh)

@@ -20,6 +20,7 @@ namespace catar
 {
 class RayScene;
 }
+class vtkDataArray;
 class vtkLightCollection;
 class vtkPolyData;
 class vtkProperty;
@@ -34,6 +35,31 @@ public:
   /// Ka = Ambient * AmbientColor, Kd = Diffuse * DiffuseColor, Ks = Specular * SpecularColor,
   /// shininess = SpecularPower, and the given emission.
   static catar::Material ConvertProperty(vtkProperty* property, const double emission[3]);
+
+  /// A material of a multi-material mesh: the Phong material, and the factors that scale a base
+  /// colour into its ambient and diffuse colours, and the opacity.
+  struct MaterialEntry
+  {
+    catar::Material Material;
+    double AmbientK = 1.0;
+    double DiffuseK = 1.0;
+    double Opacity = 1.0;
+  };
+
+  /// The number of components of a material in the field-data array "Materials": ambient,
+  /// diffuse, specular, specular power, ambient colour (3), diffuse colour (3), specular colour
+  /// (3), opacity; as vtkProperty names them.
+  static constexpr int MaterialComponents = 14;
+
+  /// A mesh's materials: the field-data array "Materials" (MaterialComponents doubles a material)
+  /// and the point-data array "MaterialIndex" (one integer a point, into Materials). Both absent:
+  /// true, `materials` empty and `index` null. One without the other, an index out of range or a
+  /// wrong size: false with a sentence in `error`.
+  static bool ReadMaterials(vtkPolyData* mesh, const double emission[3],
+    std::vector<MaterialEntry>& materials, vtkDataArray*& index, std::string& error);
+
+  /// Writes `properties` as a mesh's "Materials" field data (see ReadMaterials).
+  static void WriteMaterials(vtkPolyData* mesh, const std::vector<vtkProperty*>& properties);
 
   /// Area-weighted vertex normals (Newell normals of the polygons summed at their vertices),
   /// unit length; (0, 0, 1) where a point has no polygon.

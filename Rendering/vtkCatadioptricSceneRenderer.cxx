@@ -10,6 +10,7 @@
 #include "vtkCatadioptricEnvironmentSource.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
+#include "vtkCatadioptricLightingSupport.h"
 #include "vtkCatadioptricOccluders.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
@@ -83,17 +84,27 @@ std::string Layout(vtkPolyData* mesh)
   return s.str();
 }
 
-// Whether object b can be drawn in one pipeline with object a (the first of a run): neither is
-// textured (a texture is named per mesh) and, when the scene is lit, their materials agree.
-bool SameLook(const catar::SceneObject& a, const catar::SceneObject& b, bool lit)
+// Whether object b can be drawn in one pipeline with object a: neither is textured (a texture is
+// named per mesh). Materials may differ: they travel with the joined mesh.
+bool Joinable(const catar::SceneObject& a, const catar::SceneObject& b)
 {
-  if (!a.texture.empty() || !b.texture.empty())
-  {
-    return false;
-  }
-  return !lit ||
-    (a.ambient == b.ambient && a.diffuse == b.diffuse && a.specular == b.specular &&
-      a.specularPower == b.specularPower && a.specularColor == b.specularColor);
+  return a.texture.empty() && b.texture.empty();
+}
+
+bool SameMaterial(const catar::SceneObject& a, const catar::SceneObject& b)
+{
+  return a.ambient == b.ambient && a.diffuse == b.diffuse && a.specular == b.specular &&
+    a.specularPower == b.specularPower && a.specularColor == b.specularColor;
+}
+
+// An object's material on top of the lighting filter's defaults.
+void ApplyMaterial(const catar::SceneObject& o, vtkProperty* property)
+{
+  property->SetAmbient(o.ambient);
+  property->SetDiffuse(o.diffuse);
+  property->SetSpecular(o.specular);
+  property->SetSpecularPower(o.specularPower);
+  property->SetSpecularColor(o.specularColor.data());
 }
 
 } // namespace
@@ -254,16 +265,18 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   // equal depths in object order, as the compositor's merge of separate meshes does. Not with
   // the iterative solver: it starts each point's Newton at a neighbour's reflection point, so the
   // first points of a joined object would be the same only to rounding.
-  const bool join = scene.solver != catar::SolverType::Iterative;
+  const bool join = this->JoinObjects && scene.solver != catar::SolverType::Iterative;
   std::vector<vtkSmartPointer<vtkPolyData>> groups;
   std::vector<size_t> groupFirst; // the first object of each group (its material)
   for (size_t i = 0; i < meshes.size();)
   {
     const std::string layout = join ? Layout(meshes[i]) : std::string();
     size_t end = i + 1;
+    bool oneMaterial = true;
     while (!layout.empty() && end < meshes.size() &&
-      SameLook(scene.objects[i], scene.objects[end], lit) && Layout(meshes[end]) == layout)
+      Joinable(scene.objects[i], scene.objects[end]) && Layout(meshes[end]) == layout)
     {
+      oneMaterial = oneMaterial && SameMaterial(scene.objects[i], scene.objects[end]);
       ++end;
     }
     if (end == i + 1)
@@ -284,6 +297,30 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
       index->SetName(vtkCatadioptricArrayNames::TextureIndex);
       index->InsertNextValue(-1);
       joined->GetFieldData()->AddArray(index);
+      if (lit && !oneMaterial)
+      {
+        // Each object's material, and each point's object.
+        std::vector<vtkSmartPointer<vtkProperty>> properties;
+        std::vector<vtkProperty*> table;
+        vtkNew<vtkIntArray> materialIndex;
+        materialIndex->SetName(vtkCatadioptricArrayNames::MaterialIndex);
+        materialIndex->SetNumberOfTuples(joined->GetNumberOfPoints());
+        vtkIdType point = 0;
+        vtkNew<vtkCatadioptricLighting> defaults;
+        for (size_t j = i; j < end; ++j)
+        {
+          properties.push_back(vtkSmartPointer<vtkProperty>::New());
+          properties.back()->DeepCopy(defaults->GetProperty());
+          ApplyMaterial(scene.objects[j], properties.back());
+          table.push_back(properties.back());
+          for (vtkIdType k = 0; k < meshes[j]->GetNumberOfPoints(); ++k)
+          {
+            materialIndex->SetValue(point++, static_cast<int>(j - i));
+          }
+        }
+        vtkCatadioptricLightingSupport::WriteMaterials(joined, table);
+        joined->GetPointData()->AddArray(materialIndex);
+      }
       groups.push_back(joined);
     }
     groupFirst.push_back(i);
@@ -316,11 +353,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
           : vtkCatadioptricLighting::GOURAUD);
       lighting->SetShadows(shadows);
       lighting->SetGlobalAmbient(scene.lighting.globalAmbient.data());
-      lighting->SetAmbient(o.ambient);
-      lighting->SetDiffuse(o.diffuse);
-      lighting->SetSpecular(o.specular);
-      lighting->SetSpecularPower(o.specularPower);
-      lighting->GetProperty()->SetSpecularColor(o.specularColor.data());
+      ApplyMaterial(o, lighting->GetProperty());
       // Every object casts shadows, on itself and on the others: one structure for all.
       if (shadows)
       {
@@ -392,6 +425,11 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   in.LoadedName = name;
   in.Loaded = true;
   return true;
+}
+
+int vtkCatadioptricSceneRenderer::GetNumberOfPipelines()
+{
+  return static_cast<int>(this->Internal->Projections.size());
 }
 
 bool vtkCatadioptricSceneRenderer::Render()
@@ -580,4 +618,5 @@ void vtkCatadioptricSceneRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Triangles: " << this->Internal->Triangles << "\n";
   os << indent << "RemeshTargetArea: " << this->RemeshTargetArea << "\n";
   os << indent << "RemeshPixelTolerance: " << this->RemeshPixelTolerance << "\n";
+  os << indent << "JoinObjects: " << (this->JoinObjects ? "On" : "Off") << "\n";
 }

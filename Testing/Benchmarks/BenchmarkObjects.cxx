@@ -2,8 +2,9 @@
 // 1000 small boxes (2 cm, 12 triangles each, on a lattice behind the demo camera, seen in its
 // spherical mirror), rendered by vtkCatadioptricSceneRenderer (the path of catadioptric-render):
 // unlit; lit by the demo's spotlight and fill light with shadows (every box casts shadows on the
-// others), all boxes of one material (the renderer draws alike objects as one mesh); and lit the
-// same way with a material per box (a pipeline per box, as objects that differ get). Per scene:
+// others), all boxes of one material; and lit the same way with a material per box. The renderer
+// draws consecutive untextured objects as one mesh, their materials with it; --separate gives
+// every object a pipeline of its own (vtkCatadioptricSceneRenderer::JoinObjects off). Per scene:
 // the scene and meshes (load), the first frame (which builds what is kept between frames), the
 // median per-frame time of up to --frames frames with the camera marked modified every frame
 // (projection runs again, as when anything moves) and its stages, and the resident memory with
@@ -11,7 +12,8 @@
 // scene files' default solver, quartic; --iterative sets the iterative one (with which the
 // renderer gives every object a pipeline of its own). Run:
 //   build/bin/BenchmarkObjects [--frames N] [--max-seconds S] [--counts 10,30,...]
-//     [--variants unlit,lit,materials] [--iterative] [--threads N] [--csv FILE] [--quick]
+//     [--variants unlit,lit,materials] [--iterative] [--separate] [--threads N] [--csv FILE]
+//     [--quick]
 //   build/bin/BenchmarkObjects [--iterative] --print-scene COUNT unlit|lit|materials > boxes.yaml
 // (the scene, for catadioptric-render; --iterative before --print-scene). --max-seconds S (default
 // 20) stops a row after S seconds (at least 3 frames). --quick (CI smoke) renders 2 frames of 10
@@ -137,6 +139,9 @@ bool WriteCsv(const std::string& file, const std::vector<Result>& results)
 }
 
 // Renders the scene of `count` boxes; false (with a message) on failure.
+// --separate: every object a pipeline of its own.
+bool separate = false;
+
 bool Measure(
   int count, const std::string& variant, bool iterative, int frames, double maxSeconds, Result& r)
 {
@@ -156,6 +161,7 @@ bool Measure(
   r.variant = variant;
   vtkNew<vtkCatadioptricSceneRenderer> renderer;
   renderer->SetSceneFileName(file.string().c_str());
+  renderer->SetJoinObjects(!separate);
   const auto t0 = Clock::now();
   const bool loaded = renderer->LoadScene();
   const auto t1 = Clock::now();
@@ -343,6 +349,10 @@ int main(int argc, char* argv[])
     {
       iterative = true;
     }
+    else if (!std::strcmp(argv[i], "--separate"))
+    {
+      separate = true;
+    }
     else if (!std::strcmp(argv[i], "--quick"))
     {
       frames = 2;
@@ -352,7 +362,8 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: BenchmarkObjects [--frames N] [--max-seconds S] [--counts 10,30,...] "
-        "[--variants unlit,lit,materials] [--iterative] [--threads N] [--csv FILE] [--quick]\n"
+        "[--variants unlit,lit,materials] [--iterative] [--separate] [--threads N] [--csv FILE] "
+        "[--quick]\n"
         "       BenchmarkObjects [--iterative] --print-scene COUNT unlit|lit|materials\n");
       return 2;
     }
