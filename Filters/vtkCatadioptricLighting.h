@@ -17,6 +17,13 @@
  * Ka = Ambient * AmbientColor, Kd = Diffuse * DiffuseColor, Ks = Specular * SpecularColor,
  * shininess = SpecularPower, alpha = Opacity; Emission is set here.
  *
+ * Several materials in one mesh: a field-data array "Materials" (14 doubles a material: Ambient,
+ * Diffuse, Specular, SpecularPower, AmbientColor, DiffuseColor, SpecularColor, Opacity, as
+ * vtkProperty names them) and a point-data array "MaterialIndex" (one integer a point) give each
+ * point its own material in place of the property's (a cell takes its first point's); Emission
+ * stays the filter's. vtkCatadioptricSceneRenderer draws objects of different materials as one
+ * mesh this way.
+ *
  * Base colours: when the input has an array named InputColorArrayName (point or cell data, RGB(A),
  * unsigned char 0-255 or floating 0-1), it replaces the material's ambient and diffuse colours per
  * point/cell (so a box with a colour per face is lit face by face).

@@ -2,7 +2,8 @@
 # Builds the core, mesh-preparation, VTK and bad-input tests with AddressSanitizer and
 # UndefinedBehaviorSanitizer (float-cast-overflow included) into ./build-asan and runs them:
 # any memory error or undefined behaviour aborts its test. Extra arguments go to ctest.
-#   scripts/sanitize.sh            build and run (labels core, meshprep, vtk, corpus, fuzz)
+#   scripts/sanitize.sh            build and run (labels core, meshprep, vtk, corpus, fuzz; not the
+#                                  Python and ParaView fuzzers)
 # The Python modules, the ParaView plugin, examples and benchmarks are not built here: the
 # interpreters that load them are not instrumented. Leak checking is off (VTK's and Embree's
 # singletons live until exit).
@@ -25,4 +26,5 @@ export VTK_SMP_BACKEND_IN_USE=STDThread
 cmake --build build-asan -j "$(nproc)" --target TestCore TestMeshPrep TestVTK catadioptric-render \
   catadioptric-compare FuzzInputs
 cd build-asan
-xvfb-run -a ctest --output-on-failure --timeout 1800 -L 'core|meshprep|vtk|corpus|fuzz' "$@"
+xvfb-run -a ctest --output-on-failure --timeout 1800 -L 'core|meshprep|vtk|corpus|fuzz' \
+  -LE 'python|paraview' "$@"
