@@ -156,7 +156,8 @@ bool SaveCalibration(const std::string& path, const CameraModel& model, std::str
   const size_t dot = path.find_last_of('.');
   const bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
   std::string ext = hasExt ? path.substr(dot) : std::string(".yaml");
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext != ".yaml" && ext != ".yml" && ext != ".json")
   {
     error = path + ": cannot write a calibration in this format (.yaml, .yml or .json)";

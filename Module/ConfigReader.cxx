@@ -81,8 +81,8 @@ bool ParseNumber(const std::string& s, double& value)
     ++first;
   }
   // from_chars reads "inf" and "nan", which YAML does not call numbers.
-  if (first == last || !(std::isdigit(static_cast<unsigned char>(*first)) || *first == '.' ||
-                         *first == '-'))
+  if (first == last ||
+    !(std::isdigit(static_cast<unsigned char>(*first)) || *first == '.' || *first == '-'))
   {
     return false;
   }
@@ -244,8 +244,8 @@ std::vector<double> Numbers(const Node& node, const std::string& key)
   {
     // An OpenCV matrix: {rows, cols, dt, data}; rows x cols must be what data holds.
     const Node rows = node["rows"], cols = node["cols"], data = node["data"];
-    if (!rows.isInt() || !cols.isInt() || !data.isSeq() || rows.number() < 1 ||
-      cols.number() < 1 || rows.number() * cols.number() != static_cast<double>(data.size()))
+    if (!rows.isInt() || !cols.isInt() || !data.isSeq() || rows.number() < 1 || cols.number() < 1 ||
+      rows.number() * cols.number() != static_cast<double>(data.size()))
     {
       throw ParseError("'" + key + "': the matrix's rows x cols must match its data");
     }
@@ -436,8 +436,8 @@ void CheckTree(const YAML::Node& node, std::size_t& values, const std::string& w
 {
   if (++values > kMaxValues)
   {
-    throw ParseError(what + ": more than " + std::to_string(kMaxValues) +
-      " values once its aliases are expanded");
+    throw ParseError(
+      what + ": more than " + std::to_string(kMaxValues) + " values once its aliases are expanded");
   }
   if (node.IsSequence())
   {

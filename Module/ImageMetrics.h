@@ -71,15 +71,12 @@ inline ConstImageView AsConstView(const ImageView& view)
 struct TriangleIdView
 {
   const RasterId* data = nullptr; ///< address of the id of pixel (0, 0)
-  int width = 0;                      ///< number of columns
-  int height = 0;                     ///< number of rows
-  std::ptrdiff_t rowStride = 0;       ///< elements from row y to row y+1 (may be negative)
+  int width = 0;                  ///< number of columns
+  int height = 0;                 ///< number of rows
+  std::ptrdiff_t rowStride = 0;   ///< elements from row y to row y+1 (may be negative)
 
   /// Id of pixel (x, y); no bounds check.
-  RasterId at(int x, int y) const
-  {
-    return data[y * rowStride + static_cast<std::ptrdiff_t>(x)];
-  }
+  RasterId at(int x, int y) const { return data[y * rowStride + static_cast<std::ptrdiff_t>(x)]; }
 };
 
 /// One rendering to compare: its colours and, optionally, its visible-triangle ids.

@@ -1,4 +1,5 @@
-// CatadioptricAR Core: scene files (YAML or JSON, read with yaml-cpp; OpenCV FileStorage files too).
+// CatadioptricAR Core: scene files (YAML or JSON, read with yaml-cpp; OpenCV FileStorage files
+// too).
 //
 // A scene names the camera (a calibration file or an inline calibration map), the output size,
 // the background, and the objects (a mesh file or a procedural object, a transform, a colour).

@@ -494,8 +494,7 @@ int vtkCatadioptricRayTracer::RequestData(
     visible->SetName(vtkCatadioptricArrayNames::VisibleTriangle);
     visible->SetNumberOfTuples(nPixels);
     output->GetPointData()->AddArray(visible);
-    idData = visible->GetPointer(0) +
-      static_cast<std::ptrdiff_t>(width) * (height - 1);
+    idData = visible->GetPointer(0) + static_cast<std::ptrdiff_t>(width) * (height - 1);
   }
   const catar::RayTracer& tracer = in.Tracer;
   constexpr int kBand = 16;

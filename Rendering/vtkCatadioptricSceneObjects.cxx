@@ -311,9 +311,9 @@ void BoxTextureCoordinates(vtkPolyData* box, const catar::Vec3& size)
     {
       box->GetPoint(ids->GetId(k), p[k]);
     }
-    catar::Vec3 n = (catar::Vec3(p[1][0], p[1][1], p[1][2]) - catar::Vec3(p[0][0], p[0][1], p[0][2]))
-                      .cross(catar::Vec3(p[2][0], p[2][1], p[2][2]) -
-                        catar::Vec3(p[0][0], p[0][1], p[0][2]));
+    catar::Vec3 n =
+      (catar::Vec3(p[1][0], p[1][1], p[1][2]) - catar::Vec3(p[0][0], p[0][1], p[0][2]))
+        .cross(catar::Vec3(p[2][0], p[2][1], p[2][2]) - catar::Vec3(p[0][0], p[0][1], p[0][2]));
     int axis = 0;
     n.cwiseAbs().maxCoeff(&axis);
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;

@@ -348,9 +348,8 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
       auto lighting = vtkSmartPointer<vtkCatadioptricLighting>::New();
       lighting->SetInputConnection(last);
       lighting->SetLights(in.Lights);
-      lighting->SetShadingMode(scene.lighting.shading == "flat"
-          ? vtkCatadioptricLighting::FLAT
-          : vtkCatadioptricLighting::GOURAUD);
+      lighting->SetShadingMode(scene.lighting.shading == "flat" ? vtkCatadioptricLighting::FLAT
+                                                                : vtkCatadioptricLighting::GOURAUD);
       lighting->SetShadows(shadows);
       lighting->SetGlobalAmbient(scene.lighting.globalAmbient.data());
       ApplyMaterial(o, lighting->GetProperty());

@@ -5,7 +5,7 @@
 #   scripts/install-deps.sh --if-missing  do nothing when everything is already installed
 # Never install libvtk9-dev or python3-vtk9: they conflict with paraview-dev.
 set -euo pipefail
-packages=(build-essential cmake git pkg-config
+packages=(build-essential cmake git pkg-config clang-format
   paraview paraview-dev python3-paraview qtbase5-dev qttools5-dev libqt5svg5-dev
   libqt5opengl5-dev qtxmlpatterns5-dev-tools libqt5x11extras5-dev
   libcgal-dev libeigen3-dev libopencv-dev libopenmesh-dev libgtest-dev

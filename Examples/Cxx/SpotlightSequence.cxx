@@ -29,8 +29,8 @@
 
 namespace
 {
-std::string SceneText(const std::string& mesh, int w, int h, const std::string& shading,
-  bool shadows)
+std::string SceneText(
+  const std::string& mesh, int w, int h, const std::string& shading, bool shadows)
 {
   std::ostringstream s;
   s << "%YAML:1.0\n---\n"
@@ -152,7 +152,7 @@ int main(int argc, char* argv[])
   std::printf("%d frames (%s, %s), %lld triangles: %.2f ms per frame for projection + lighting "
               "+ sort + composite; frames %s_000.png ...%s%s\n",
     frames, shading.c_str(), shadows ? "shadows" : "no shadows",
-    static_cast<long long>(renderer->GetNumberOfTriangles()), 1e3 * total / frames,
-    prefix.c_str(), video.empty() ? "" : ", video ", video.c_str());
+    static_cast<long long>(renderer->GetNumberOfTriangles()), 1e3 * total / frames, prefix.c_str(),
+    video.empty() ? "" : ", video ", video.c_str());
   return 0;
 }

@@ -71,8 +71,7 @@ double OneSidedDistance(const TriangleVector& from, const TriangleTree& to, doub
     const Vec3 ab = detail::ToVec3(triangle.vertex(1)) - a;
     const Vec3 ac = detail::ToVec3(triangle.vertex(2)) - a;
     const double longest = std::max({ ab.norm(), ac.norm(), (ac - ab).norm() });
-    const int n =
-      sampleInside ? std::max(1, static_cast<int>(std::ceil(longest / precision))) : 1;
+    const int n = sampleInside ? std::max(1, static_cast<int>(std::ceil(longest / precision))) : 1;
     for (int i = 0; i <= n; ++i)
     {
       for (int j = 0; i + j <= n; ++j)
@@ -195,8 +194,7 @@ double HausdorffDistance(const TriangleMesh& a, const TriangleMesh& b, double pr
   const TriangleVector trianglesB = Triangles(b);
   if (trianglesA.empty() || trianglesB.empty())
   {
-    return trianglesA.empty() && trianglesB.empty() ? 0.0
-                                                    : std::numeric_limits<double>::infinity();
+    return trianglesA.empty() && trianglesB.empty() ? 0.0 : std::numeric_limits<double>::infinity();
   }
   // Degenerate triangles are left out of the trees: their points lie on their edges, which
   // their neighbours have (and they are still sampled).
@@ -263,8 +261,7 @@ double SharpEdgeDeviation(
   {
     const Vec3 a = detail::ToVec3(s.source());
     const Vec3 ab = detail::ToVec3(s.target()) - a;
-    const int n =
-      sampleInside ? std::max(1, static_cast<int>(std::ceil(ab.norm() / step))) : 1;
+    const int n = sampleInside ? std::max(1, static_cast<int>(std::ceil(ab.norm() / step))) : 1;
     for (int i = 0; i <= n; ++i)
     {
       const Point3 p = detail::ToPoint3(a + ab * (double(i) / n));

@@ -301,8 +301,7 @@ void Repairer::RemoveInvalidTriangles()
   for (std::size_t i = 0; i < this->Triangles.size(); ++i)
   {
     const Triangle& t = this->Triangles[i];
-    const bool inRange =
-      t[0] >= 0 && t[1] >= 0 && t[2] >= 0 && t[0] < n && t[1] < n && t[2] < n;
+    const bool inRange = t[0] >= 0 && t[1] >= 0 && t[2] >= 0 && t[0] < n && t[1] < n && t[2] < n;
     if (!inRange || t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
     {
       ++this->Report.invalidTriangles;
@@ -318,8 +317,7 @@ void Repairer::RemoveInvalidTriangles()
 
   if (this->Report.invalidPoints > 0)
   {
-    this->Messages.push_back(
-      Count(this->Report.invalidPoints, "point", "points") +
+    this->Messages.push_back(Count(this->Report.invalidPoints, "point", "points") +
       " with NaN or infinite coordinates removed, with the " +
       Count(onInvalidPoints, "triangle", "triangles") + " using them");
   }
@@ -505,14 +503,13 @@ void Repairer::RemoveDegenerateTriangles()
     }
   }
 
-  this->Report.degenerateTriangles = count - static_cast<std::size_t>(std::count(
-                                               alive.begin(), alive.begin() + count, char(1)));
+  this->Report.degenerateTriangles =
+    count - static_cast<std::size_t>(std::count(alive.begin(), alive.begin() + count, char(1)));
   Compact(this->Triangles, alive);
   if (this->Report.degenerateTriangles > 0)
   {
-    std::string message =
-      Count(this->Report.degenerateTriangles, "degenerate (zero-area) triangle",
-        "degenerate (zero-area) triangles") +
+    std::string message = Count(this->Report.degenerateTriangles, "degenerate (zero-area) triangle",
+                            "degenerate (zero-area) triangles") +
       " removed";
     if (splits > 0)
     {
@@ -618,8 +615,8 @@ void Repairer::MakeEdgesManifold()
     }
   }
   Compact(this->Triangles, alive);
-  this->Messages.push_back(Count(this->Report.nonManifoldEdges, "non-manifold edge",
-                             "non-manifold edges") +
+  this->Messages.push_back(
+    Count(this->Report.nonManifoldEdges, "non-manifold edge", "non-manifold edges") +
     " (more than two triangles) made manifold: " + Count(removed, "triangle", "triangles") +
     " removed");
 }
@@ -803,8 +800,8 @@ bool Repairer::Orient()
       for (int f : component)
       {
         const Triangle t = oriented(f);
-        volume += (points[t[0]] - centroid)
-                    .dot((points[t[1]] - centroid).cross(points[t[2]] - centroid));
+        volume +=
+          (points[t[0]] - centroid).dot((points[t[1]] - centroid).cross(points[t[2]] - centroid));
       }
       reverse = volume < 0.0;
     }
@@ -988,8 +985,7 @@ void Repairer::CountBoundaryLoops()
   }
   if (this->Report.boundaryLoops > 0)
   {
-    this->Messages.push_back(
-      Count(this->Report.boundaryLoops, "boundary loop", "boundary loops") +
+    this->Messages.push_back(Count(this->Report.boundaryLoops, "boundary loop", "boundary loops") +
       " (holes or open borders) kept: the surface is not closed");
   }
 }

@@ -103,7 +103,8 @@ public:
   }
   void notify(size_t step) override
   {
-    this->Report(this->From + (this->To - this->From) * static_cast<double>(step) / this->Collapses);
+    this->Report(
+      this->From + (this->To - this->From) * static_cast<double>(step) / this->Collapses);
   }
 
 private:
@@ -128,8 +129,8 @@ using EdgeConstraintMap = SurfaceMesh::Property_map<SurfaceMesh::Edge_index, boo
 using VertexConstraintMap = SurfaceMesh::Property_map<SurfaceMesh::Vertex_index, bool>;
 
 /// Marks the constrained edges and pinned vertices of `sm` (see the file comment).
-void MarkConstraints(
-  const SurfaceMesh& sm, const RemeshOptions& options, EdgeConstraintMap ecm, VertexConstraintMap vcm)
+void MarkConstraints(const SurfaceMesh& sm, const RemeshOptions& options, EdgeConstraintMap ecm,
+  VertexConstraintMap vcm)
 {
   if (options.protectFeatures)
   {
@@ -436,8 +437,8 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
   if (targetCount > kMaxTriangles)
   {
     result.error = "targetArea " + Format(options.targetArea) + " is too small: about " +
-      Format(targetCount) + " triangles for a surface of area " + Format(area) +
-      " (the limit is " + Format(kMaxTriangles) + ")";
+      Format(targetCount) + " triangles for a surface of area " + Format(area) + " (the limit is " +
+      Format(kMaxTriangles) + ")";
     return;
   }
 
@@ -495,8 +496,8 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
       // Too coarse input needs no subdivision first: isotropic remeshing splits long edges
       // until they are all short enough.
       double from = 0.1;
-      if (options.strategy == RemeshStrategy::Auto &&
-        meanArea < options.targetArea / kDenseRatio && triangles > kDenseMinTriangles)
+      if (options.strategy == RemeshStrategy::Auto && meanArea < options.targetArea / kDenseRatio &&
+        triangles > kDenseMinTriangles)
       {
         const std::size_t target =
           static_cast<std::size_t>(std::ceil(kDecimationHeadroom * targetCount));
@@ -646,8 +647,8 @@ void TransferPointData(const TriangleMesh& source, TriangleMesh& target)
       }
       hint = tree.closest_point_and_primitive(detail::ToPoint3(p), hint);
       const auto& t = source.triangles[sourceTriangle[hint.second - triangles.cbegin()]];
-      const std::array<double, 3> weights = Barycentric(detail::ToVec3(hint.first),
-        source.points[t[0]], source.points[t[1]], source.points[t[2]]);
+      const std::array<double, 3> weights = Barycentric(
+        detail::ToVec3(hint.first), source.points[t[0]], source.points[t[1]], source.points[t[2]]);
       for (std::size_t d = 0; d < data.size(); ++d)
       {
         const std::vector<double>& values = inputs[d]->values;

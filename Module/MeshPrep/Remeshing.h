@@ -34,8 +34,8 @@ enum class RemeshStrategy : int
 
 struct RemeshOptions
 {
-  double targetArea = 0.0; ///< target triangle area, model units squared; must be > 0
-  int iterations = 3;      ///< isotropic remeshing iterations (split, collapse, flip, smooth)
+  double targetArea = 0.0;     ///< target triangle area, model units squared; must be > 0
+  int iterations = 3;          ///< isotropic remeshing iterations (split, collapse, flip, smooth)
   bool protectFeatures = true; ///< keep sharp edges and corners (a box keeps its edges)
   double featureAngle = 60.0;  ///< degrees: edges whose dihedral angle deviates more from flat
                                ///< are sharp
@@ -48,10 +48,10 @@ struct RemeshOptions
 struct RemeshResult
 {
   bool ok = false;
-  std::string error;   ///< why it failed (ok == false)
-  Warnings warnings;   ///< repairs made, input ignored
-  TriangleMesh mesh;   ///< the remeshed surface, point data carried over
-  std::string steps;   ///< what was done, e.g. "decimate, isotropic"
+  std::string error; ///< why it failed (ok == false)
+  Warnings warnings; ///< repairs made, input ignored
+  TriangleMesh mesh; ///< the remeshed surface, point data carried over
+  std::string steps; ///< what was done, e.g. "decimate, isotropic"
 };
 
 /// Remeshes `input` so that its triangles have about `options.targetArea`. The input is repaired

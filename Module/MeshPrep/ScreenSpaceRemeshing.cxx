@@ -72,7 +72,7 @@ Vec3 ToEigen(const Point& p)
 }
 
 /// Runs body(i) for i in [0, n) on a few threads; rethrows the first exception a thread caught.
-template <typename Body>
+template<typename Body>
 void ParallelFor(std::size_t n, const Body& body)
 {
   const std::size_t minPerThread = 256;
@@ -464,8 +464,7 @@ double Remesher::Bend(VH a, VH b)
   {
     return found->second;
   }
-  const double bend =
-    this->EdgeError(ToEigen(this->Mesh.point(a)), ToEigen(this->Mesh.point(b)));
+  const double bend = this->EdgeError(ToEigen(this->Mesh.point(a)), ToEigen(this->Mesh.point(b)));
   this->BendCache.emplace(key, bend);
   return bend;
 }
@@ -480,9 +479,8 @@ void Remesher::Prefetch(const std::vector<std::pair<VH, VH>>& pairs)
       missing.push_back(pair);
     }
   }
-  std::sort(missing.begin(), missing.end(), [](const auto& x, const auto& y) {
-    return Key(x.first, x.second) < Key(y.first, y.second);
-  });
+  std::sort(missing.begin(), missing.end(),
+    [](const auto& x, const auto& y) { return Key(x.first, x.second) < Key(y.first, y.second); });
   missing.erase(std::unique(missing.begin(), missing.end(),
                   [](const auto& x, const auto& y) {
                     return Key(x.first, x.second) == Key(y.first, y.second);
@@ -881,12 +879,13 @@ bool Remesher::MoveIfBetter(VH v)
     for (VH w : this->Mesh.vv_range(v))
     {
       const Point pw = this->Mesh.point(w);
-      const double r = this->Ratio(
-        (candidate - pw).norm(), this->EdgeError(ToEigen(candidate), ToEigen(pw)));
+      const double r =
+        this->Ratio((candidate - pw).norm(), this->EdgeError(ToEigen(candidate), ToEigen(pw)));
       worstAfter = std::max(worstAfter, r);
     }
-    const double deviation =
-      worstAfter < worst ? this->ReplacementDeviation(faces, moved, !this->Mesh.is_boundary(v)) : 0.0;
+    const double deviation = worstAfter < worst
+      ? this->ReplacementDeviation(faces, moved, !this->Mesh.is_boundary(v))
+      : 0.0;
     if (worstAfter < worst && deviation <= this->Set.maxGeometricError)
     {
       this->Mesh.set_point(v, candidate);
@@ -1097,8 +1096,7 @@ ScreenSpaceResult Remesh(
   {
     TransferPointData(repaired, result.mesh);
   }
-  MeasureEdgeError(
-    result.mesh, edgeError, result.maxError, result.meanError, result.visibleEdges);
+  MeasureEdgeError(result.mesh, edgeError, result.maxError, result.meanError, result.visibleEdges);
   if (result.maxError > settings.tolerance && !budgetSpent)
   {
     std::ostringstream message;

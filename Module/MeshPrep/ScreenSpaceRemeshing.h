@@ -28,10 +28,10 @@ using EdgeErrorFunction = std::function<double(const Vec3& a, const Vec3& b)>;
 
 struct ScreenSpaceOptions
 {
-  double tolerance = 0.5;     ///< pixels; > 0
-  double minEdgeLength = 0.0; ///< never split edges shorter than this (0: 1e-4 x bounding box
-                              ///< diagonal)
-  double maxEdgeLength = 0.0; ///< never make edges longer than this (0: 0.25 x diagonal)
+  double tolerance = 0.5;         ///< pixels; > 0
+  double minEdgeLength = 0.0;     ///< never split edges shorter than this (0: 1e-4 x bounding box
+                                  ///< diagonal)
+  double maxEdgeLength = 0.0;     ///< never make edges longer than this (0: 0.25 x diagonal)
   double maxGeometricError = 0.0; ///< bound on the distance to the input surface when coarsening
                                   ///< (0: 1e-3 x diagonal)
   bool protectFeatures = true;

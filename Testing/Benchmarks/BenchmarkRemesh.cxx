@@ -159,8 +159,9 @@ int main(int argc, char* argv[])
     quick ? std::vector<double>{ 1.0 } : std::vector<double>{ 2.0, 1.0, 0.5, 0.25 };
 
   std::vector<Row> rows;
-  std::printf("| object | mode | target | triangles | mean area (m^2) | remesh (ms) | max bend (px) "
-              "| geometric bound (mm) | frame (ms) |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+    "| object | mode | target | triangles | mean area (m^2) | remesh (ms) | max bend (px) "
+    "| geometric bound (mm) | frame (ms) |\n|---|---|---|---|---|---|---|---|---|\n");
   auto print = [](const Row& r) {
     const std::string bound = r.boundMm > 0.0 ? std::to_string(r.boundMm).substr(0, 5) : "";
     std::printf("| %s | %s | %g | %lld | %.3g | %.1f | %.3f | %s | %.2f |\n", r.object.c_str(),
@@ -222,8 +223,8 @@ int main(int argc, char* argv[])
     for (const Row& r : rows)
     {
       f << r.object << "," << r.mode << "," << r.parameter << "," << r.triangles << ","
-        << r.meanArea << "," << r.remeshMs << "," << r.bend << "," << r.boundMm << ","
-        << r.frameMs << "\n";
+        << r.meanArea << "," << r.remeshMs << "," << r.bend << "," << r.boundMm << "," << r.frameMs
+        << "\n";
     }
     std::printf("wrote %s\n", csv.c_str());
   }

@@ -89,7 +89,7 @@ inline TriangleMesh MakeSphere(double radius, int levels)
 }
 
 /// Adds a point attribute computed from each point's position.
-template <typename Function>
+template<typename Function>
 void AddPointAttribute(TriangleMesh& mesh, const std::string& name, int components, Function f)
 {
   PointAttribute attribute;
@@ -212,8 +212,7 @@ inline double SignedVolume(const TriangleMesh& mesh)
   double volume = 0.0;
   for (const auto& t : mesh.triangles)
   {
-    volume +=
-      mesh.points[t[0]].dot(mesh.points[t[1]].cross(mesh.points[t[2]])) / 6.0;
+    volume += mesh.points[t[0]].dot(mesh.points[t[1]].cross(mesh.points[t[2]])) / 6.0;
   }
   return volume;
 }

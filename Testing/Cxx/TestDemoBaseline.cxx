@@ -193,17 +193,20 @@ std::vector<BaselineScene> BaselineScenes()
     { "LitFlat", cam + "lighting:\n  shading: flat\n  shadows: 0\n" + kOneSpot + kTorus },
     { "LitGouraud", cam + "lighting:\n  shading: gouraud\n  shadows: 0\n" + kOneSpot + kTorus },
     { "ThreeSpotlights",
-      cam + "lighting:\n  shading: gouraud\n  shadows: 1\n  global_ambient: [0.1, 0.1, 0.1]\n"
-            "  lights:\n"
-            "    - { type: spot, position: [ 0.3, -0.25, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
-            " cone_angle: 30, color: [ 1.0, 0.15, 0.15 ] }\n"
-            "    - { type: spot, position: [ -0.15, 0.0, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
-            " cone_angle: 30, color: [ 0.15, 1.0, 0.15 ] }\n"
-            "    - { type: spot, position: [ -0.15, -0.5, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
-            " cone_angle: 30, color: [ 0.2, 0.3, 1.0 ] }\n" +
+      cam +
+        "lighting:\n  shading: gouraud\n  shadows: 1\n  global_ambient: [0.1, 0.1, 0.1]\n"
+        "  lights:\n"
+        "    - { type: spot, position: [ 0.3, -0.25, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
+        " cone_angle: 30, color: [ 1.0, 0.15, 0.15 ] }\n"
+        "    - { type: spot, position: [ -0.15, 0.0, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
+        " cone_angle: 30, color: [ 0.15, 1.0, 0.15 ] }\n"
+        "    - { type: spot, position: [ -0.15, -0.5, 1.2 ], focal_point: [ 0.0, -0.25, 0.9 ],"
+        " cone_angle: 30, color: [ 0.2, 0.3, 1.0 ] }\n" +
         kTorus },
-    { "ShadowsOff", cam + "lighting:\n  shading: gouraud\n  shadows: 0\n" + kSlantSpot + kBoxOnPlate },
-    { "ShadowsOn", cam + "lighting:\n  shading: gouraud\n  shadows: 1\n" + kSlantSpot + kBoxOnPlate },
+    { "ShadowsOff",
+      cam + "lighting:\n  shading: gouraud\n  shadows: 0\n" + kSlantSpot + kBoxOnPlate },
+    { "ShadowsOn",
+      cam + "lighting:\n  shading: gouraud\n  shadows: 1\n" + kSlantSpot + kBoxOnPlate },
     { "TexturedBox",
       cam + "lighting:\n  shading: gouraud\n  shadows: 0\n  global_ambient: [0.4, 0.4, 0.4]\n" +
         kOneSpot +
@@ -229,8 +232,8 @@ TEST_P(ImageBaseline, MatchesTheBaseline)
   CompareWithBaseline(renderer->GetOutput(), scene.name);
 }
 
-INSTANTIATE_TEST_SUITE_P(Lighting, ImageBaseline, ::testing::Range(0, 6),
-  [](const ::testing::TestParamInfo<int>& info) {
+INSTANTIATE_TEST_SUITE_P(
+  Lighting, ImageBaseline, ::testing::Range(0, 6), [](const ::testing::TestParamInfo<int>& info) {
     return std::string(BaselineScenes()[info.param].name);
   });
 

@@ -99,7 +99,8 @@ TEST(vtkCatadioptricLighting, GouraudUsesTheVertexReflectionPointAsViewer)
   catar::Material m;
   m.ambient = 0.0 * catar::Vec3(0.8, 0.6, 0.4);
   vtkProperty* p = lighting->GetProperty();
-  m.ambient = p->GetAmbient() * catar::Vec3(p->GetAmbientColor()[0], p->GetAmbientColor()[1], p->GetAmbientColor()[2]);
+  m.ambient = p->GetAmbient() *
+    catar::Vec3(p->GetAmbientColor()[0], p->GetAmbientColor()[1], p->GetAmbientColor()[2]);
   m.diffuse = p->GetDiffuse() * catar::Vec3(0.8, 0.6, 0.4);
   m.specular = 0.6 * catar::Vec3(1, 1, 1);
   m.shininess = 20;
@@ -180,10 +181,10 @@ TEST(vtkCatadioptricLighting, LowerPlateIsDarkExactlyInTheUmbra)
       continue;
     }
     const double g = colors->GetComponent(i, 1);
-    const bool inUmbra = x[0] > sx0 + margin && x[0] < sx1 - margin && x[1] > sy0 + margin &&
-      x[1] < sy1 - margin;
-    const bool clearlyOut = x[0] < sx0 - margin || x[0] > sx1 + margin || x[1] < sy0 - margin ||
-      x[1] > sy1 + margin;
+    const bool inUmbra =
+      x[0] > sx0 + margin && x[0] < sx1 - margin && x[1] > sy0 + margin && x[1] < sy1 - margin;
+    const bool clearlyOut =
+      x[0] < sx0 - margin || x[0] > sx1 + margin || x[1] < sy0 - margin || x[1] > sy1 + margin;
     if (inUmbra)
     {
       ++inside;

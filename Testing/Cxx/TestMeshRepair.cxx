@@ -231,10 +231,10 @@ TEST(MeshRepair, DuplicateTrianglesAreRemoved)
 {
   TriangleMesh mesh = MakeBox(kSx, kSy, kSz);
   mesh.triangles.push_back(mesh.triangles[0]);
-  mesh.triangles.push_back({ { mesh.triangles[5][0], mesh.triangles[5][2],
-    mesh.triangles[5][1] } }); // reversed copy
-  mesh.triangles.push_back({ { mesh.triangles[7][1], mesh.triangles[7][2],
-    mesh.triangles[7][0] } }); // rotated copy
+  mesh.triangles.push_back(
+    { { mesh.triangles[5][0], mesh.triangles[5][2], mesh.triangles[5][1] } }); // reversed copy
+  mesh.triangles.push_back(
+    { { mesh.triangles[7][1], mesh.triangles[7][2], mesh.triangles[7][0] } }); // rotated copy
   Warnings warnings;
   const RepairReport report = Repair(mesh, warnings);
   EXPECT_EQ(report.duplicateTriangles, 3u);
@@ -444,8 +444,8 @@ TEST(MeshRepair, AllDegenerateIsAnError)
   Warnings warnings;
   std::string error;
   EXPECT_FALSE(RepairMesh(mesh, report, warnings, error));
-  EXPECT_EQ(error,
-    "nothing is left after repair: all 3 triangles were invalid, degenerate or duplicates");
+  EXPECT_EQ(
+    error, "nothing is left after repair: all 3 triangles were invalid, degenerate or duplicates");
   EXPECT_EQ(report.degenerateTriangles, 2u);
   EXPECT_EQ(report.invalidTriangles, 1u);
   EXPECT_EQ(mesh.NumberOfTriangles(), 0u);

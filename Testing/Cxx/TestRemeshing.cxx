@@ -178,9 +178,8 @@ TEST(RemeshBox, OpenBoxKeepsItsBorder)
   std::size_t topCorners = 0;
   for (const Vec3& p : result.mesh.points)
   {
-    topCorners += p.z() == kSz && (p.x() == 0.0 || p.x() == kSx) && (p.y() == 0.0 || p.y() == kSy)
-      ? 1
-      : 0;
+    topCorners +=
+      p.z() == kSz && (p.x() == 0.0 || p.x() == kSx) && (p.y() == 0.0 || p.y() == kSy) ? 1 : 0;
   }
   EXPECT_EQ(topCorners, 4u);
   EXPECT_LT(HausdorffDistance(open, result.mesh, 0.01), 1e-9);
@@ -398,11 +397,10 @@ TEST(RemeshOptions, InvalidOptionsAreErrors)
     return result.error;
   };
   RemeshOptions options;
-  EXPECT_EQ(error(options),
-    "invalid options: targetArea must be a positive finite number (got 0)");
+  EXPECT_EQ(error(options), "invalid options: targetArea must be a positive finite number (got 0)");
   options.targetArea = -1e-4;
-  EXPECT_EQ(error(options),
-    "invalid options: targetArea must be a positive finite number (got -0.0001)");
+  EXPECT_EQ(
+    error(options), "invalid options: targetArea must be a positive finite number (got -0.0001)");
   options.targetArea = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(error(options).find("invalid options: targetArea"), 0u);
   options.targetArea = std::numeric_limits<double>::infinity();
@@ -412,13 +410,14 @@ TEST(RemeshOptions, InvalidOptionsAreErrors)
   EXPECT_EQ(error(options), "invalid options: iterations must be at least 1 (got 0)");
   options.iterations = 3;
   options.featureAngle = 200.0;
-  EXPECT_EQ(error(options),
-    "invalid options: featureAngle must be between 0 and 180 degrees (got 200)");
+  EXPECT_EQ(
+    error(options), "invalid options: featureAngle must be between 0 and 180 degrees (got 200)");
   options.featureAngle = 60.0;
   options.targetArea = 1e-12; // 7e10 triangles
   EXPECT_EQ(error(options).find("targetArea 1e-12 is too small: about 7e+10 triangles"), 0u);
   options.targetArea = 1e-4;
-  EXPECT_EQ(RemeshToArea(TriangleMesh(), options).error, "cannot remesh: the mesh has no triangles");
+  EXPECT_EQ(
+    RemeshToArea(TriangleMesh(), options).error, "cannot remesh: the mesh has no triangles");
 }
 
 TEST(RemeshOptions, RepairsInputFirst)

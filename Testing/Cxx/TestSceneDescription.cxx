@@ -176,10 +176,11 @@ objects:
   for (const auto& c : bad)
   {
     SceneDescription t;
-    EXPECT_FALSE(ParseScene(std::string("%YAML:1.0\n---\n") + kCamera + c.first + "\n", "", t, error))
+    EXPECT_FALSE(
+      ParseScene(std::string("%YAML:1.0\n---\n") + kCamera + c.first + "\n", "", t, error))
       << c.first;
-    EXPECT_NE(error.find(c.second), std::string::npos) << "'" << error << "' lacks '" << c.second
-                                                       << "'";
+    EXPECT_NE(error.find(c.second), std::string::npos)
+      << "'" << error << "' lacks '" << c.second << "'";
   }
 }
 
@@ -206,8 +207,8 @@ objects:
   EXPECT_EQ(s.objects[2].remesh.mode, "none");
   // Without a remesh key, nothing is remeshed.
   SceneDescription plain;
-  ASSERT_TRUE(ParseScene(std::string("%YAML:1.0\n---\n") + kCamera + "objects: [ { type: box } ]\n",
-    "", plain, error))
+  ASSERT_TRUE(ParseScene(
+    std::string("%YAML:1.0\n---\n") + kCamera + "objects: [ { type: box } ]\n", "", plain, error))
     << error;
   EXPECT_EQ(plain.objects[0].remesh.mode, "none");
   // Errors name the key.

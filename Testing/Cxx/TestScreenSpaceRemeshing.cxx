@@ -58,7 +58,8 @@ CameraModel TiltedCamera()
 /// 12 outward-oriented triangles.
 TriangleMesh MakeBox(const Vec3& size, double yawDegrees, const Vec3& centre)
 {
-  const Mat3 rotation = Eigen::AngleAxisd(yawDegrees * Pi / 180.0, Vec3::UnitZ()).toRotationMatrix();
+  const Mat3 rotation =
+    Eigen::AngleAxisd(yawDegrees * Pi / 180.0, Vec3::UnitZ()).toRotationMatrix();
   TriangleMesh box;
   for (int i = 0; i < 8; ++i)
   {
@@ -104,13 +105,12 @@ TriangleMesh MakeIcosphere(const Vec3& centre, double radius, int levels)
 {
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
   TriangleMesh unit;
-  unit.points = { { -1, g, 0 }, { 1, g, 0 }, { -1, -g, 0 }, { 1, -g, 0 }, { 0, -1, g },
-    { 0, 1, g }, { 0, -1, -g }, { 0, 1, -g }, { g, 0, -1 }, { g, 0, 1 }, { -g, 0, -1 },
-    { -g, 0, 1 } };
+  unit.points = { { -1, g, 0 }, { 1, g, 0 }, { -1, -g, 0 }, { 1, -g, 0 }, { 0, -1, g }, { 0, 1, g },
+    { 0, -1, -g }, { 0, 1, -g }, { g, 0, -1 }, { g, 0, 1 }, { -g, 0, -1 }, { -g, 0, 1 } };
   unit.triangles = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 }, { 0, 10, 11 },
-    { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 }, { 3, 9, 4 },
-    { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 }, { 6, 2, 10 },
-    { 8, 6, 7 }, { 9, 8, 1 } };
+    { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 }, { 3, 9, 4 }, { 3, 4, 2 },
+    { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 },
+    { 9, 8, 1 } };
   for (int level = 0; level < levels; ++level)
   {
     unit = Subdivide(unit);
@@ -184,7 +184,8 @@ double SharpLength(const TriangleMesh& mesh, double degrees)
   double length = 0.0;
   for (const auto& edge : normals)
   {
-    if (edge.second.size() == 2 && edge.second[0].dot(edge.second[1]) < std::cos(degrees * Pi / 180))
+    if (edge.second.size() == 2 &&
+      edge.second[0].dot(edge.second[1]) < std::cos(degrees * Pi / 180))
     {
       length += (mesh.points[edge.first.first] - mesh.points[edge.first.second]).norm();
     }
@@ -427,8 +428,7 @@ TEST(ScreenSpaceRemeshing, BoxInDemoCameraMeetsTolerance)
     EXPECT_LT(2 * mesh.NumberOfTriangles(), uniform.NumberOfTriangles()) << name;
   }
   // A smaller tolerance costs more triangles.
-  EXPECT_GT(cases[1].result.mesh.NumberOfTriangles(),
-    2 * cases[0].result.mesh.NumberOfTriangles());
+  EXPECT_GT(cases[1].result.mesh.NumberOfTriangles(), 2 * cases[0].result.mesh.NumberOfTriangles());
 }
 
 // Placement 2: another camera (tilted mirror, distortion) and a sphere of 6 cm radius behind the
@@ -483,15 +483,15 @@ TEST(ScreenSpaceRemeshing, SphereBehindMirrorMeetsTolerance)
     hiddenMeans.push_back(Mean(measured.hiddenLengths));
 
     // Fewer triangles than the uniform subdivision that meets the same tolerance.
-    const TriangleMesh uniform = UniformMeetingTolerance(sphere, [&projector](const Vec3& a, const Vec3& b) {
-      return EdgeBendPixels(projector, a, b);
-    }, tolerance);
+    const TriangleMesh uniform = UniformMeetingTolerance(
+      sphere,
+      [&projector](const Vec3& a, const Vec3& b) { return EdgeBendPixels(projector, a, b); },
+      tolerance);
     std::cout << "[ screen   ] uniform subdivision meeting " << tolerance
               << " px: " << uniform.NumberOfTriangles() << " triangles" << std::endl;
     EXPECT_LT(2 * mesh.NumberOfTriangles(), uniform.NumberOfTriangles()) << name;
   }
-  EXPECT_GT(cases[1].result.mesh.NumberOfTriangles(),
-    2 * cases[0].result.mesh.NumberOfTriangles());
+  EXPECT_GT(cases[1].result.mesh.NumberOfTriangles(), 2 * cases[0].result.mesh.NumberOfTriangles());
   // The tighter tolerance refines where the sphere is seen, not where it is hidden.
   ASSERT_EQ(visibleMeans.size(), 2u);
   EXPECT_LT(visibleMeans[1], 0.8 * visibleMeans[0]);
@@ -658,7 +658,8 @@ TEST(ScreenSpaceRemeshing, OpenSurfaceKeepsBoundaryAndPointData)
   {
     if (edge.second == 1)
     {
-      boundary += (result.mesh.points[edge.first.first] - result.mesh.points[edge.first.second]).norm();
+      boundary +=
+        (result.mesh.points[edge.first.first] - result.mesh.points[edge.first.second]).norm();
     }
   }
   EXPECT_NEAR(boundary, 2.0 * (0.2 + 0.15), 1e-9);
