@@ -32,10 +32,16 @@ vtkCatadioptricCameraSlotMacro(vtkCatadioptricRemesher);
 
 namespace
 {
-// Forwards the mesh algorithms' progress to the filter's.
+// Forwards the mesh algorithms' progress to the filter's, and the filter's AbortExecute flag
+// (ParaView's abort button, or an observer of the progress event) to them.
 void ReportProgress(double fraction, void* clientData)
 {
   static_cast<vtkCatadioptricRemesher*>(clientData)->UpdateProgress(0.1 + 0.8 * fraction);
+}
+
+bool StopRequested(void* clientData)
+{
+  return static_cast<vtkCatadioptricRemesher*>(clientData)->GetAbortExecute() != 0;
 }
 
 // The default bound on the geometric error in PIXEL_TOLERANCE mode: the distance that moves the
@@ -86,6 +92,9 @@ void AddValue(vtkFieldData* fd, const char* name, double value)
 int vtkCatadioptricRemesher::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // An abort asked during an earlier execution is spent (VTK 9.2's executives leave the flag
+  // set); set directly, as SetAbortExecute would mark the filter modified.
+  this->AbortExecute = 0;
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (!input || !output)
@@ -135,6 +144,7 @@ int vtkCatadioptricRemesher::RequestData(
     options.preserveBoundaries = this->PreserveBoundaries;
     options.strategy = static_cast<catar::mesh::RemeshStrategy>(this->Strategy);
     options.progress = &ReportProgress;
+    options.stop = &StopRequested;
     options.progressData = this;
     catar::mesh::RemeshResult result = catar::mesh::RemeshToArea(mesh, options);
     ok = result.ok;
@@ -168,6 +178,7 @@ int vtkCatadioptricRemesher::RequestData(
     options.featureAngle = this->FeatureAngle;
     options.maxIterations = this->Iterations;
     options.progress = &ReportProgress;
+    options.stop = &StopRequested;
     options.progressData = this;
     const catar::mesh::EdgeErrorFunction bend = [projector](
                                                   const catar::Vec3& a, const catar::Vec3& b) {
@@ -187,6 +198,11 @@ int vtkCatadioptricRemesher::RequestData(
   for (const std::string& w : warnings)
   {
     vtkWarningMacro(<< w);
+  }
+  if (!ok && error == catar::mesh::kAbortedError)
+  {
+    output->Initialize(); // aborted (AbortExecute): an empty output, as VTK's filters leave
+    return 1;
   }
   if (!ok)
   {

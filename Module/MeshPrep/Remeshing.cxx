@@ -67,26 +67,33 @@ constexpr double kDecimationHeadroom = 2.0;
 /// Refuse targets that would make more triangles than this (memory).
 constexpr double kMaxTriangles = 2e7;
 
-/// Calls the user's progress function, if any.
+/// Calls the user's progress function, if any, and asks the stop function: false when the work
+/// must stop (then Stopped() stays true).
 class Progress
 {
 public:
   explicit Progress(const RemeshOptions& options)
     : Function(options.progress)
+    , Stop(options.stop)
     , Data(options.progressData)
   {
   }
-  void operator()(double fraction) const
+  [[nodiscard]] bool operator()(double fraction) const
   {
     if (this->Function)
     {
       this->Function(std::min(1.0, std::max(0.0, fraction)), this->Data);
     }
+    this->Stopped = this->Stopped || (this->Stop && this->Stop(this->Data));
+    return !this->Stopped;
   }
+  bool Aborted() const { return this->Stopped; }
 
 private:
   ProgressFunction Function;
+  StopFunction Stop;
   void* Data;
+  mutable bool Stopped = false;
 };
 
 /// Reports decimation progress between two fractions of the whole run.
@@ -103,9 +110,10 @@ public:
   }
   void notify(size_t step) override
   {
-    this->Report(
+    (void)this->Report(
       this->From + (this->To - this->From) * static_cast<double>(step) / this->Collapses);
   }
+  bool abort() const override { return this->Report.Aborted(); }
 
 private:
   const Progress& Report;
@@ -247,6 +255,11 @@ bool Decimate(TriangleMesh& mesh, std::size_t targetTriangles, const RemeshOptio
   decimater.set_observer(&observer);
   decimater.decimate_to_faces(0, targetTriangles);
   decimater.set_observer(nullptr);
+  if (progress.Aborted())
+  {
+    error = kAbortedError;
+    return false;
+  }
   mesh = detail::FromOpenMesh(om);
   return true;
 }
@@ -341,7 +354,11 @@ bool CalibratedIsotropicRemesh(TriangleMesh& mesh, const RemeshOptions& options,
     {
       return false;
     }
-    progress(from + (to - from) * (pass + 1) / kAreaPasses);
+    if (!progress(from + (to - from) * (pass + 1) / kAreaPasses))
+    {
+      error = kAbortedError;
+      return false;
+    }
     const std::size_t count = candidate.NumberOfTriangles();
     if (count == 0)
     {
@@ -418,7 +435,11 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
     result.error = "invalid options: unknown strategy " + std::to_string(strategy);
     return;
   }
-  progress(0.0);
+  if (!progress(0.0))
+  {
+    result.error = kAbortedError;
+    return;
+  }
 
   TriangleMesh repaired = input;
   RepairReport report;
@@ -428,7 +449,11 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
     result.error = "cannot remesh: " + error;
     return;
   }
-  progress(0.1);
+  if (!progress(0.1))
+  {
+    result.error = kAbortedError;
+    return;
+  }
 
   const double area = TotalArea(repaired);
   const std::size_t triangles = repaired.NumberOfTriangles();
@@ -481,7 +506,11 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
       for (int level = 0; level < levels; ++level)
       {
         SubdivideOnce(mesh);
-        progress(0.1 + 0.8 * (level + 1) / levels);
+        if (!progress(0.1 + 0.8 * (level + 1) / levels))
+        {
+          result.error = kAbortedError;
+          return;
+        }
       }
       if (levels > 0)
       {
@@ -508,7 +537,11 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
         steps.emplace_back("decimate");
         from = 0.4;
       }
-      progress(from);
+      if (!progress(from))
+      {
+        result.error = kAbortedError;
+        return;
+      }
       if (!CalibratedIsotropicRemesh(mesh, options, progress, from, 0.9, result.error))
       {
         return;
@@ -517,7 +550,11 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
       break;
     }
   }
-  progress(0.9);
+  if (!progress(0.9))
+  {
+    result.error = kAbortedError;
+    return;
+  }
 
   if (!carried)
   {
@@ -529,7 +566,7 @@ void Remesh(const TriangleMesh& input, const RemeshOptions& options, RemeshResul
     result.steps += (i > 0 ? ", " : "") + steps[i];
   }
   result.ok = true;
-  progress(1.0);
+  (void)progress(1.0);
 }
 
 using TriangleVector = std::vector<Kernel::Triangle_3>;

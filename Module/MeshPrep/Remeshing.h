@@ -42,6 +42,7 @@ struct RemeshOptions
   bool preserveBoundaries = true; ///< keep the boundary polylines where they are
   RemeshStrategy strategy = RemeshStrategy::Auto;
   ProgressFunction progress = nullptr;
+  StopFunction stop = nullptr; ///< asked at each progress step; true stops (error kAbortedError)
   void* progressData = nullptr;
 };
 

@@ -993,12 +993,14 @@ Settings ResolveSettings(const ScreenSpaceOptions& options, double diagonal)
   return settings;
 }
 
-void Report(const ScreenSpaceOptions& options, double fraction)
+// Reports progress; false when the stop function asks to stop.
+[[nodiscard]] bool Report(const ScreenSpaceOptions& options, double fraction)
 {
   if (options.progress)
   {
     options.progress(std::min(std::max(fraction, 0.0), 1.0), options.progressData);
   }
+  return !(options.stop && options.stop(options.progressData));
 }
 
 ScreenSpaceResult Remesh(
@@ -1020,7 +1022,11 @@ ScreenSpaceResult Remesh(
     result.error = "the input mesh has no triangles";
     return result;
   }
-  Report(options, 0.0);
+  if (!Report(options, 0.0))
+  {
+    result.error = kAbortedError;
+    return result;
+  }
 
   TriangleMesh repaired = input;
   RepairReport repairReport;
@@ -1053,7 +1059,11 @@ ScreenSpaceResult Remesh(
     return result;
   }
   remesher.Prepare();
-  Report(options, 0.05);
+  if (!Report(options, 0.05))
+  {
+    result.error = kAbortedError;
+    return result;
+  }
 
   // Rounds of refine, coarsen, relax, until a round removes (almost) no triangles.
   bool budgetSpent = false;
@@ -1068,7 +1078,11 @@ ScreenSpaceResult Remesh(
     }
     remesher.Coarsen();
     const std::size_t triangles = remesher.NumberOfTriangles();
-    Report(options, 0.05 + 0.85 * (round + 1.0) / options.maxIterations);
+    if (!Report(options, 0.05 + 0.85 * (round + 1.0) / options.maxIterations))
+    {
+      result.error = kAbortedError;
+      return result;
+    }
     // Without relaxation a second round would find nothing to do.
     const bool converged = triangles >= 0.99 * static_cast<double>(previous);
     if (converged || !settings.relax || remesher.Relax() == 0)
@@ -1089,7 +1103,11 @@ ScreenSpaceResult Remesh(
       std::to_string(settings.maxTriangles) + " triangles); some edges bend more than the " +
       "tolerance");
   }
-  Report(options, 0.92);
+  if (!Report(options, 0.92))
+  {
+    result.error = kAbortedError;
+    return result;
+  }
 
   remesher.Export(result.mesh);
   if (!repaired.pointData.empty())
@@ -1105,7 +1123,7 @@ ScreenSpaceResult Remesh(
     result.warnings.push_back(message.str());
   }
   result.ok = true;
-  Report(options, 1.0);
+  (void)Report(options, 1.0);
   return result;
 }
 } // namespace

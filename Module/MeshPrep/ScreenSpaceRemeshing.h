@@ -44,6 +44,7 @@ struct ScreenSpaceOptions
   /// reached), a guard against unreachable tolerances.
   std::size_t maxTriangles = 4000000;
   ProgressFunction progress = nullptr;
+  StopFunction stop = nullptr; ///< asked at each progress step; true stops (error kAbortedError)
   void* progressData = nullptr;
 };
 

@@ -45,6 +45,13 @@ using Warnings = std::vector<std::string>;
 /// Progress callback: fraction in [0, 1]. May be empty.
 using ProgressFunction = void (*)(double fraction, void* clientData);
 
+/// Abort callback, asked (with the progress callback's client data) at every progress step:
+/// true stops the algorithm, which then fails with kAbortedError. May be empty.
+using StopFunction = bool (*)(void* clientData);
+
+/// The error of an algorithm stopped by its StopFunction.
+constexpr const char* kAbortedError = "aborted";
+
 } // namespace mesh
 } // namespace catar
 

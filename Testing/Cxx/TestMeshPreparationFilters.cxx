@@ -7,6 +7,7 @@
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -267,6 +268,69 @@ TEST(vtkCatadioptricRemesher, PixelToleranceHoldsThroughTheCamera)
     }
     ASSERT_EQ(bounds.size(), 2u);
     EXPECT_NEAR(bounds[1], 0.3 * bounds[0], 1e-12);
+  }
+}
+
+// Long work can be stopped: an observer of the progress events sets AbortExecute (as ParaView's
+// abort button does); the remesher stops at its next step, leaves an empty output and reports no
+// error; the next update runs whole. Both modes.
+namespace
+{
+class AbortAfter : public vtkCommand
+{
+public:
+  static AbortAfter* New() { return new AbortAfter; }
+  void Execute(vtkObject* caller, unsigned long, void* callData) override
+  {
+    const double fraction = *static_cast<double*>(callData);
+    if (fraction < 1.0) // the executive reports 1 at the end, whatever happened
+    {
+      this->Last = std::max(this->Last, fraction);
+    }
+    if (this->Enabled && fraction > this->Threshold)
+    {
+      static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn();
+    }
+  }
+  bool Enabled = true;
+  double Threshold = 0.15;
+  double Last = 0.0;
+};
+} // namespace
+
+TEST(vtkCatadioptricRemesher, ProgressAndAbort)
+{
+  const double size[3] = { 0.2, 0.1, 0.05 }, centre[3] = { 0.0, -0.25, 0.9 };
+  auto box = ColouredBox(size, centre);
+  for (bool pixels : { false, true })
+  {
+    vtkNew<vtkCatadioptricRemesher> remesher;
+    remesher->SetInputData(box);
+    if (pixels)
+    {
+      remesher->SetModeToPixelTolerance();
+      remesher->SetPixelTolerance(0.3);
+      remesher->SetCamera(DemoCamera());
+    }
+    else
+    {
+      remesher->SetTargetArea(2.5e-5);
+    }
+    vtkNew<AbortAfter> abort;
+    remesher->AddObserver(vtkCommand::ProgressEvent, abort);
+    vtkNew<catar_test::ErrorCounter> errors;
+    errors->Watch(remesher);
+    remesher->Update();
+    EXPECT_EQ(errors->Count, 0) << errors->Last;
+    EXPECT_EQ(remesher->GetOutput()->GetNumberOfPolys(), 0) << "pixels " << pixels;
+    EXPECT_LT(abort->Last, 0.9) << "it went on after the abort";
+    abort->Enabled = false;
+    abort->Last = 0.0;
+    remesher->Modified();
+    remesher->Update();
+    EXPECT_EQ(errors->Count, 0) << errors->Last;
+    EXPECT_GT(remesher->GetOutput()->GetNumberOfPolys(), 2 * box->GetNumberOfCells());
+    EXPECT_GE(abort->Last, 0.9); // the whole way this time
   }
 }
 
