@@ -16,6 +16,19 @@
 
 vtkStandardNewMacro(vtkCatadioptricCamera);
 
+// The status codes of the wrapped class are Core's, value for value.
+static_assert(vtkCatadioptricCamera::VALID == static_cast<int>(catar::ProjectionStatus::Valid) &&
+    vtkCatadioptricCamera::OUTSIDE_IMAGE ==
+      static_cast<int>(catar::ProjectionStatus::OutsideImage) &&
+    vtkCatadioptricCamera::INSIDE_MIRROR ==
+      static_cast<int>(catar::ProjectionStatus::InsideMirror) &&
+    vtkCatadioptricCamera::HIDDEN_BY_MIRROR ==
+      static_cast<int>(catar::ProjectionStatus::HiddenByMirror) &&
+    vtkCatadioptricCamera::NO_REFLECTION ==
+      static_cast<int>(catar::ProjectionStatus::NoReflection) &&
+    vtkCatadioptricCamera::INVALID_INPUT == static_cast<int>(catar::ProjectionStatus::InvalidInput),
+  "vtkCatadioptricCamera::StatusCodes must match catar::ProjectionStatus");
+
 namespace
 {
 // An integer-vector key that the executives copy from a filter's first input to its outputs

@@ -30,6 +30,15 @@ vtkCatadioptricRemesher::~vtkCatadioptricRemesher() = default;
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricRemesher);
 
+// The strategies of the wrapped class are the mesh library's, value for value.
+static_assert(
+  vtkCatadioptricRemesher::AUTO == static_cast<int>(catar::mesh::RemeshStrategy::Auto) &&
+    vtkCatadioptricRemesher::ISOTROPIC ==
+      static_cast<int>(catar::mesh::RemeshStrategy::Isotropic) &&
+    vtkCatadioptricRemesher::DECIMATE == static_cast<int>(catar::mesh::RemeshStrategy::Decimate) &&
+    vtkCatadioptricRemesher::SUBDIVIDE == static_cast<int>(catar::mesh::RemeshStrategy::Subdivide),
+  "vtkCatadioptricRemesher::Strategies must match catar::mesh::RemeshStrategy");
+
 namespace
 {
 // Forwards the mesh algorithms' progress to the filter's, and the filter's AbortExecute flag

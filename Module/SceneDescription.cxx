@@ -2,6 +2,7 @@
 
 #include "CalibrationIO.h"
 #include "ConfigReader.h"
+#include "DemoSceneText.h" // generated: kDemoSceneText
 
 #include <algorithm>
 #include <cmath>
@@ -574,56 +575,8 @@ bool ParseScene(
 
 const char* DemoSceneText()
 {
-  return R"(%YAML:1.0
----
-# The built-in demo: a spherical mirror (5 cm radius) hanging in a room; the camera, 14 cm in
-# front of the mirror centre, looks at it. World frame: z up, metres. The objects are behind
-# and beside the camera, so the camera sees them only in the mirror.
-camera:
-  image_width: 1328
-  image_height: 1048
-  camera_matrix: [ 1000.0, 0.0, 663.5, 0.0, 1000.0, 523.5, 0.0, 0.0, 1.0 ]
-  distortion_coefficients: [ 0.0, 0.0, 0.0, 0.0, 0.0 ]
-  mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
-  # camera at world (0, -0.14, 1.0) looking along world +y, image up = world +z
-  world_to_camera: [ 1.0, 0.0, 0.0, 0.0,
-                     0.0, 0.0, -1.0, 1.0,
-                     0.0, 1.0, 0.0, 0.14,
-                     0.0, 0.0, 0.0, 1.0 ]
-output: { width: 1328, height: 1048 }
-solver: quartic
-background: { type: environment, samples: 2 }
-lighting:
-  shading: gouraud
-  shadows: 1
-  global_ambient: [ 0.3, 0.3, 0.3 ]
-  lights:
-    # a warm spotlight above the mirror, aimed between the objects
-    - { type: spot, position: [ 0.25, 0.05, 1.35 ], focal_point: [ 0.0, -0.22, 0.95 ],
-        cone_angle: 45, exponent: 1, color: [ 1.0, 0.95, 0.85 ] }
-    # a dim cool fill light from the front left
-    - { type: directional, position: [ -0.6, 1.0, 0.8 ], focal_point: [ 0.0, 0.0, 0.0 ],
-        color: [ 0.3, 0.35, 0.45 ] }
-objects:
-  - name: parallelepiped
-    type: box
-    size: [ 0.30, 0.12, 0.09 ]
-    resolution: 24
-    translate: [ 0.14, -0.22, 0.87 ]
-    rotate: [ 0.0, 0.0, 30.0 ]
-    face_colors: 1
-    texture: checker
-    material: { ambient: 0.3, diffuse: 0.8, specular: 0.2, specular_power: 20 }
-  - name: torus
-    type: torus
-    radius: 0.075
-    tube_radius: 0.025
-    resolution: 48
-    translate: [ -0.15, -0.22, 1.1 ]
-    rotate: [ 70.0, 0.0, 20.0 ]
-    color: [ 0.95, 0.55, 0.1 ]
-    material: { ambient: 0.3, diffuse: 0.8, specular: 0.6, specular_power: 40 }
-)";
+  // Data/scenes/demo.yaml, embedded when the project is configured (DemoSceneText.h.in).
+  return kDemoSceneText;
 }
 
 SceneDescription DemoScene()
