@@ -4,6 +4,7 @@
 //   catadioptric-render [SCENE] [-o OUT.png] [--repeat N] [--target-area A | --pixel-tolerance P]
 //                       [--print-demo-scene]
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkNew.h"
 #include "vtkSMPTools.h"
@@ -101,7 +102,7 @@ int main(int argc, char* argv[])
   // Parallel loops: STDThread unless the environment chose a backend.
   if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
   {
-    vtkSMPTools::SetBackend("STDThread");
+    vtkCatadioptricParallel::EnableThreads();
   }
 
   vtkNew<vtkCatadioptricSceneRenderer> renderer;

@@ -1,11 +1,14 @@
 /**
  * @class   vtkCatadioptricParallel
- * @brief   parallel loops on a pool of threads that outlive the loop
+ * @brief   parallel loops on a pool of threads that outlive the loop: the project's one policy
  *
- * The per-frame filters run a dozen parallel loops per frame. vtkSMPTools' STDThread backend (the
- * one this VTK ships) starts and joins its threads inside every vtkSMPTools::For, about 0.13 ms
- * per loop on two cores, which is a tenth of a 10 ms frame. For() here hands the ranges to a
- * pool of threads made once and kept waiting between loops.
+ * Every parallel loop of the project runs on Core's pool (Module/Parallel.h: threads made once and
+ * kept waiting between loops; VTK 9.2's STDThread backend starts and joins its threads inside
+ * every vtkSMPTools::For, about 0.13 ms a loop on two cores, a tenth of a 10 ms frame). This class
+ * is the VTK side of it: the filters' loops, with the thread count VTK's settings give.
+ *
+ * Threads are opt-in, as in VTK: EnableThreads() (programs, and `catadioptricar.enable_threads()`
+ * in Python) selects VTK's STDThread backend; without it Debian's VTK runs loops on one thread.
  *
  * It follows vtkSMPTools' settings: as many threads as
  * vtkSMPTools::GetEstimatedNumberOfThreads() (vtkSMPTools::Initialize(n), VTK_SMP_MAX_THREADS),
@@ -56,6 +59,11 @@ public:
 
   /// The number of threads a loop uses (the caller's included).
   static int GetNumberOfThreads();
+
+  /// The one opt-in for threads: selects vtkSMPTools' STDThread backend and, when threads > 0,
+  /// that many threads (vtkSMPTools::Initialize). The environment variable
+  /// VTK_SMP_BACKEND_IN_USE, read by VTK at start, does the same without code.
+  static void EnableThreads(int threads = 0);
 
   /// Asks for the cache line at p, which a loop body will read soon (gathers through an index:
   /// the misses of several elements then overlap). A hint only; nothing on other compilers.

@@ -9,6 +9,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricMeshConversion.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -186,6 +187,7 @@ int vtkCatadioptricRemesher::RequestData(
     options.protectFeatures = this->ProtectFeatures;
     options.featureAngle = this->FeatureAngle;
     options.maxIterations = this->Iterations;
+    options.threads = vtkCatadioptricParallel::GetNumberOfThreads();
     options.progress = &ReportProgress;
     options.stop = &StopRequested;
     options.progressData = this;

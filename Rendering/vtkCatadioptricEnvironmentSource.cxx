@@ -6,13 +6,13 @@
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricImageSupport.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
@@ -147,7 +147,7 @@ int vtkCatadioptricEnvironmentSource::RequestData(
   const int samples = this->Samples;
   const bool panorama = this->Mode == PANORAMA;
   const catar::EquirectangularPanorama& image = this->Cache->Panorama;
-  vtkSMPTools::For(0, height, 8, [&](vtkIdType y0, vtkIdType y1) {
+  vtkCatadioptricParallel::For(0, height, 8, [&](vtkIdType y0, vtkIdType y1) {
     if (panorama)
     {
       catar::RenderPanoramaRows(
@@ -185,7 +185,7 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
       pano.height = kGeneratedPanoramaWidth / 2;
       pano.channels = 3;
       pano.pixels.resize(static_cast<std::size_t>(pano.width) * pano.height * pano.channels);
-      vtkSMPTools::For(0, pano.height, [&](vtkIdType j0, vtkIdType j1) {
+      vtkCatadioptricParallel::For(0, pano.height, 1, [&](vtkIdType j0, vtkIdType j1) {
         catar::RenderRoomPanoramaRows(
           room, viewpoint, pano, static_cast<int>(j0), static_cast<int>(j1));
       });
@@ -250,7 +250,7 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
   const bool floating = type == VTK_FLOAT || type == VTK_DOUBLE;
   const double range = scalars->GetDataTypeMax();
   const double scale = floating || !(range > 0.0) ? 1.0 : 1.0 / range;
-  vtkSMPTools::For(0, pano.height, [&](vtkIdType j0, vtkIdType j1) {
+  vtkCatadioptricParallel::For(0, pano.height, 1, [&](vtkIdType j0, vtkIdType j1) {
     for (vtkIdType j = j0; j < j1; ++j)
     {
       const vtkIdType row = static_cast<vtkIdType>(pano.height - 1 - j) * pano.width; // VTK row

@@ -10,6 +10,7 @@
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricLightingSupport.h"
 #include "vtkCatadioptricMeshCheck.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -22,8 +23,6 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
-#include "vtkSMPThreadLocal.h"
-#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
@@ -499,13 +498,15 @@ int vtkCatadioptricRayTracer::RequestData(
   const catar::RayTracer& tracer = in.Tracer;
   constexpr int kBand = 16;
   const int bands = (height + kBand - 1) / kBand;
-  vtkSMPThreadLocal<catar::RayTraceStatistics> statistics;
-  vtkSMPTools::For(0, bands, [&](vtkIdType b, vtkIdType e) {
-    catar::RayTraceStatistics& s = statistics.Local();
+  // Statistics per band, summed after the loop (no thread-local storage: the pool's threads are
+  // not VTK's).
+  std::vector<catar::RayTraceStatistics> statistics(static_cast<size_t>(bands));
+  vtkCatadioptricParallel::For(0, bands, 1, [&](vtkIdType b, vtkIdType e) {
     for (vtkIdType band = b; band < e; ++band)
     {
       tracer.RenderRows(view, idData, -static_cast<std::ptrdiff_t>(width),
-        static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand), &s);
+        static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand),
+        &statistics[static_cast<size_t>(band)]);
     }
   });
   for (const catar::RayTraceStatistics& s : statistics)

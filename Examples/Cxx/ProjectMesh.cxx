@@ -7,12 +7,12 @@
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
 #include "vtkCatadioptricPainterSort.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPNGWriter.h"
-#include "vtkSMPTools.h"
 #include "vtkSphereSource.h"
 #include "vtkTransform.h"
 #include "vtkTransformPolyDataFilter.h"
@@ -27,7 +27,7 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "usage: %s CALIBRATION.yaml OUT.png [MESH.ply|MESH.obj]\n", argv[0]);
     return 2;
   }
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   vtkNew<vtkCatadioptricCamera> camera;
   if (!camera->Load(argv[1]))
   {

@@ -9,12 +9,12 @@
 // Stanford mesh (e.g. ../shared/data/stanford-bunny.obj, y up, metres) the mesh is turned z up
 // and scaled to about 20 cm. The paper's rows: box and bunny flat without shadows; buddha and
 // dragon Gouraud with shadows.
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
-#include "vtkSMPTools.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -102,7 +102,7 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "frames must be positive and the size at least 16x16\n");
     return 2;
   }
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   const std::string scenePath = prefix + "-scene.yaml";
   std::ofstream(scenePath) << SceneText(mesh, w, h, shading, shadows);
   vtkNew<vtkCatadioptricSceneRenderer> renderer;

@@ -10,7 +10,6 @@ import argparse
 import sys
 
 import catadioptricar as car
-from vtkmodules.vtkCommonCore import vtkSMPTools
 from vtkmodules.vtkFiltersCore import vtkTriangleFilter
 from vtkmodules.vtkFiltersSources import vtkConeSource, vtkSphereSource
 from vtkmodules.vtkIOImage import vtkPNGWriter
@@ -22,7 +21,7 @@ def main():
     parser.add_argument("-o", "--output", default="pipeline.png", help="PNG to write")
     args = parser.parse_args()
 
-    vtkSMPTools.SetBackend("STDThread")
+    car.enable_threads()
     camera = car.vtkCatadioptricCamera()
     if not camera.Load(args.calibration):
         print("cannot load the calibration:", camera.GetLastError(), file=sys.stderr)

@@ -15,7 +15,6 @@ import sys
 import tempfile
 
 import catadioptricar as car
-from vtkmodules.vtkCommonCore import vtkSMPTools
 from vtkmodules.vtkFiltersCore import vtkImageAppend
 from vtkmodules.vtkIOImage import vtkPNGWriter
 
@@ -47,7 +46,7 @@ def main():
     parser.add_argument("-o", "--output", default="shadows-side-by-side.png")
     args = parser.parse_args()
     mesh = os.path.abspath(args.mesh) if args.mesh and os.path.exists(args.mesh) else ""
-    vtkSMPTools.SetBackend("STDThread")
+    car.enable_threads()
     append = vtkImageAppend()
     append.SetAppendAxis(0)
     renderers = []

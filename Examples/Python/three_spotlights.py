@@ -16,7 +16,6 @@ import sys
 import tempfile
 
 import catadioptricar as car
-from vtkmodules.vtkCommonCore import vtkSMPTools
 
 CAMERA = """camera:
   image_width: 1328
@@ -55,7 +54,7 @@ def main():
     parser.add_argument("--prefix", default="three-spotlights")
     args = parser.parse_args()
     mesh = os.path.abspath(args.mesh) if args.mesh and os.path.exists(args.mesh) else ""
-    vtkSMPTools.SetBackend("STDThread")
+    car.enable_threads()
 
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "scene.yaml")

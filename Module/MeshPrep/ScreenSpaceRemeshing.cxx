@@ -24,6 +24,8 @@
 // or are renumbered). A last refinement guarantees the bound and the result is measured afresh.
 #include "ScreenSpaceRemeshing.h"
 
+#include "Parallel.h"
+
 #include "MeshRepair.h"
 #include "Remeshing.h"
 
@@ -71,50 +73,18 @@ Vec3 ToEigen(const Point& p)
   return Vec3(p[0], p[1], p[2]);
 }
 
-/// Runs body(i) for i in [0, n) on a few threads; rethrows the first exception a thread caught.
+/// Runs body(i) for i in [0, n) on Core's thread pool (`threads` threads, < 1: the default),
+/// ranges of at least 256; rethrows the first exception a body threw.
 template<typename Body>
-void ParallelFor(std::size_t n, const Body& body)
+void ParallelFor(std::size_t n, int threads, const Body& body)
 {
-  const std::size_t minPerThread = 256;
-  const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t threads = std::min({ hardware, std::size_t(16), n / minPerThread + 1 });
-  if (threads <= 1)
-  {
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      body(i);
-    }
-    return;
-  }
-  std::vector<std::exception_ptr> errors(threads);
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < threads; ++t)
-  {
-    pool.emplace_back([&, t]() {
-      try
+  catar::parallel::ForCatching(
+    0, static_cast<std::int64_t>(n), 256, threads, [&](std::int64_t b, std::int64_t e) {
+      for (std::int64_t i = b; i < e; ++i)
       {
-        for (std::size_t i = t; i < n; i += threads)
-        {
-          body(i);
-        }
-      }
-      catch (...)
-      {
-        errors[t] = std::current_exception();
+        body(static_cast<std::size_t>(i));
       }
     });
-  }
-  for (std::thread& thread : pool)
-  {
-    thread.join();
-  }
-  for (const std::exception_ptr& error : errors)
-  {
-    if (error)
-    {
-      std::rethrow_exception(error);
-    }
-  }
 }
 
 using Triangle = std::array<Point, 3>;
@@ -192,6 +162,7 @@ struct Settings
   double featureAngle = 60.0; ///< degrees
   std::size_t maxTriangles = 0;
   bool relax = true;
+  int threads = 0;
 };
 
 class Remesher;
@@ -487,7 +458,7 @@ void Remesher::Prefetch(const std::vector<std::pair<VH, VH>>& pairs)
                   }),
     missing.end());
   std::vector<double> bends(missing.size());
-  ParallelFor(missing.size(), [&](std::size_t i) {
+  ParallelFor(missing.size(), this->Set.threads, [&](std::size_t i) {
     bends[i] = this->EdgeError(
       ToEigen(this->Mesh.point(missing[i].first)), ToEigen(this->Mesh.point(missing[i].second)));
   });
@@ -990,6 +961,7 @@ Settings ResolveSettings(const ScreenSpaceOptions& options, double diagonal)
   settings.featureAngle = options.featureAngle;
   settings.maxTriangles = options.maxTriangles;
   settings.relax = options.relax;
+  settings.threads = options.threads;
   return settings;
 }
 
@@ -1114,7 +1086,8 @@ ScreenSpaceResult Remesh(
   {
     TransferPointData(repaired, result.mesh);
   }
-  MeasureEdgeError(result.mesh, edgeError, result.maxError, result.meanError, result.visibleEdges);
+  MeasureEdgeError(result.mesh, edgeError, result.maxError, result.meanError, result.visibleEdges,
+    options.threads);
   if (result.maxError > settings.tolerance && !budgetSpent)
   {
     std::ostringstream message;
@@ -1150,7 +1123,7 @@ ScreenSpaceResult RemeshToPixelTolerance(
 }
 
 void MeasureEdgeError(const TriangleMesh& mesh, const EdgeErrorFunction& edgeError,
-  double& maxError, double& meanError, std::size_t& visibleEdges)
+  double& maxError, double& meanError, std::size_t& visibleEdges, int threads)
 {
   maxError = 0.0;
   meanError = 0.0;
@@ -1176,7 +1149,7 @@ void MeasureEdgeError(const TriangleMesh& mesh, const EdgeErrorFunction& edgeErr
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<double> bends(edges.size());
-  ParallelFor(edges.size(), [&](std::size_t i) {
+  ParallelFor(edges.size(), threads, [&](std::size_t i) {
     bends[i] = edgeError(mesh.points[edges[i].first], mesh.points[edges[i].second]);
   });
   double sum = 0.0;

@@ -43,6 +43,9 @@ struct ScreenSpaceOptions
   /// Refinement stops at this many triangles (a warning says so; maxError tells what was
   /// reached), a guard against unreachable tolerances.
   std::size_t maxTriangles = 4000000;
+  /// Threads of the edge-bend loops (Core's pool, Module/Parallel.h); < 1: its default, the
+  /// hardware's. vtkCatadioptricRemesher passes VTK's (vtkCatadioptricParallel).
+  int threads = 0;
   ProgressFunction progress = nullptr;
   StopFunction stop = nullptr; ///< asked at each progress step; true stops (error kAbortedError)
   void* progressData = nullptr;
@@ -66,9 +69,10 @@ struct ScreenSpaceResult
 ScreenSpaceResult RemeshToPixelTolerance(
   const TriangleMesh& input, const EdgeErrorFunction& edgeError, const ScreenSpaceOptions& options);
 
-/// The largest and mean bend over the edges of `mesh` for which edgeError is >= 0.
+/// The largest and mean bend over the edges of `mesh` for which edgeError is >= 0, measured on
+/// `threads` threads (< 1: catar::parallel::DefaultThreads()).
 void MeasureEdgeError(const TriangleMesh& mesh, const EdgeErrorFunction& edgeError,
-  double& maxError, double& meanError, std::size_t& visibleEdges);
+  double& maxError, double& meanError, std::size_t& visibleEdges, int threads = 0);
 
 } // namespace mesh
 } // namespace catar

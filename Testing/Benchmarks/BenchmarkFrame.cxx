@@ -5,9 +5,9 @@
 // scene key `visibility: depth`); composite_ms compares the two. Run:
 //   build/bin/BenchmarkFrame [--benchmark_out=frame.csv --benchmark_out_format=csv]
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkNew.h"
-#include "vtkSMPTools.h"
 
 #include <benchmark/benchmark.h>
 
@@ -21,7 +21,7 @@ namespace
 {
 void BM_DemoFrame(benchmark::State& state)
 {
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   const bool depth = state.range(0) != 0;
   state.SetLabel(depth ? "depth buffer" : "painter");
   vtkNew<vtkCatadioptricSceneRenderer> renderer;

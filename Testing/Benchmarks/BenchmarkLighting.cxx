@@ -8,10 +8,10 @@
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricLighting.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
 #include <benchmark/benchmark.h>
@@ -24,7 +24,7 @@ using catar_benchmark::DemoCamera;
 
 void BM_Lighting(benchmark::State& state)
 {
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   const int mode = static_cast<int>(state.range(0));
   const int nLights = static_cast<int>(state.range(1));
   const bool shadows = state.range(2) != 0;

@@ -20,6 +20,7 @@
 // and 30 boxes.
 #include "FramePipeline.h"
 
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkSMPTools.h"
 
@@ -294,7 +295,7 @@ bool IsVariant(const std::string& v)
 
 int main(int argc, char* argv[])
 {
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   int frames = 30;
   double maxSeconds = 20.0;
   std::vector<int> counts{ 10, 30, 100, 300, 1000 };

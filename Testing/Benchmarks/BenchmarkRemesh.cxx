@@ -14,6 +14,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricPainterSort.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricRemesher.h"
 #include "vtkCellArray.h"
@@ -21,7 +22,6 @@
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkTessellatedBoxSource.h"
 #include "vtkTransform.h"
@@ -136,7 +136,7 @@ int main(int argc, char* argv[])
   {
     frames = 2;
   }
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   // The bunny's repairs (unused points, open holes) would repeat on every row.
   vtkObject::GlobalWarningDisplayOff();
   vtkNew<vtkCatadioptricCamera> camera;

@@ -16,6 +16,7 @@
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
 
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricRayTracer.h"
 #include "vtkCatadioptricRemesher.h"
 #include "vtkPLYReader.h"
@@ -117,7 +118,7 @@ void PrintRow(const Result& r)
 
 int main(int argc, char* argv[])
 {
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   int frames = 300;
   int memoryFrames = 1000;
   double maxSeconds = 30.0;

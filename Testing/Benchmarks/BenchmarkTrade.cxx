@@ -29,6 +29,7 @@
 #include "ImageMetrics.h"
 
 #include "vtkAxis.h"
+#include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricRayTracer.h"
 #include "vtkCatadioptricRemesher.h"
 #include "vtkChartLegend.h"
@@ -45,7 +46,6 @@
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkSMPTools.h"
 #include "vtkTable.h"
 #include "vtkTextProperty.h"
 #include "vtkTypeInt64Array.h"
@@ -584,7 +584,7 @@ int main(int argc, char* argv[])
   {
     frames = 2;
   }
-  vtkSMPTools::SetBackend("STDThread");
+  vtkCatadioptricParallel::EnableThreads();
   vtkNew<CountingOutputWindow> output;
   Output = output;
   vtkOutputWindow::SetInstance(output);

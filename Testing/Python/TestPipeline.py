@@ -149,6 +149,16 @@ class PipelineTest(unittest.TestCase):
         self.assertEqual(cam.GetDistortion(), (0.0,) * 5)
 
 
+    def test_enable_threads(self):
+        from vtkmodules.vtkCommonCore import vtkSMPTools
+        car.enable_threads(2)
+        self.assertEqual(vtkSMPTools.GetBackend(), "STDThread")
+        self.assertEqual(vtkSMPTools.GetEstimatedNumberOfThreads(), 2)
+        with self.assertRaises(ValueError):
+            car.enable_threads(0)
+        self.assertIn("enable_threads", car.__all__)
+
+
 if __name__ == "__main__":
     result = unittest.main(exit=False, verbosity=2).result
     sys.exit(0 if result.wasSuccessful() and result.testsRun > 0 else 1)
