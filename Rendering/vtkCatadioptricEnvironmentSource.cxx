@@ -257,7 +257,7 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
       for (int i = 0; i < pano.width; ++i)
       {
         const vtkIdType t = row + i;
-        std::uint8_t c[4];
+        std::uint8_t c[4] = { 0, 0, 0, 0 };
         for (int k = 0; k < components && k < 4; ++k)
         {
           c[k] =
