@@ -182,6 +182,25 @@ inline bool Any(LaneMask m)
   return any != 0;
 }
 } // namespace lanes
+
+namespace detail
+{
+// Horner: the value of the polynomial c[0] x^(N-1) + ... + c[N-1] and its derivative, for
+// doubles and for lanes.
+template<int N, typename T>
+T PolyEval(const T (&c)[N], T x, T& derivative)
+{
+  T p = c[0];
+  T dp = lanes::Constant<T>(0.0);
+  for (int i = 1; i < N; ++i)
+  {
+    dp = dp * x + p;
+    p = p * x + c[i];
+  }
+  derivative = dp;
+  return p;
+}
+} // namespace detail
 } // namespace catar
 
 #endif

@@ -22,6 +22,7 @@
 #define catarSphereProjection_h
 
 #include "CameraModel.h"
+#include "Polynomials.h" // the solvers the sphere's reflection reduces to
 
 #include <cstddef>
 
@@ -144,11 +145,6 @@ private:
 
 namespace detail
 {
-/// Real roots of c4 x^4 + c3 x^3 + c2 x^2 + c1 x + c0 (closed form: Ferrari / Cardano, with
-/// degree reduction when leading coefficients vanish). Returns the number of roots written.
-int SolveQuartic(double c4, double c3, double c2, double c1, double c0, double roots[4]);
-/// Real roots of c3 x^3 + c2 x^2 + c1 x + c0 (Cardano / trigonometric). Returns the count.
-int SolveCubic(double c3, double c2, double c1, double c0, double roots[3]);
 /// The planar problem's closed-form step: the root of the reflection quartic inside [lo, hi]
 /// (camera at (a,0), point at (bx,by), unit circle), before any Newton polish. False if none.
 bool QuarticReflectionAngle(double a, double bx, double by, double lo, double hi, double& theta);
