@@ -44,6 +44,13 @@ void vtkCatadioptricParallel::EnableThreads(int threads)
 void vtkCatadioptricParallel::Run(
   vtkIdType begin, vtkIdType end, vtkIdType grain, RangeFunction call, void* functor)
 {
+  // The thread count is asked for only when the loop can use threads (asking VTK costs).
+  const int threads = end - begin > std::max<vtkIdType>(grain, 1) ? GetNumberOfThreads() : 1;
+  if (threads == 1)
+  {
+    call(functor, begin, end);
+    return;
+  }
   Call c{ call, functor };
-  catar::parallel::Run(begin, end, grain, GetNumberOfThreads(), &Adapter, &c);
+  catar::parallel::Run(begin, end, grain, threads, &Adapter, &c);
 }
