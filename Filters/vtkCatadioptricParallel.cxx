@@ -44,6 +44,10 @@ void vtkCatadioptricParallel::EnableThreads(int threads)
 void vtkCatadioptricParallel::Run(
   vtkIdType begin, vtkIdType end, vtkIdType grain, RangeFunction call, void* functor)
 {
+  if (end <= begin)
+  {
+    return;
+  }
   // The thread count is asked for only when the loop can use threads (asking VTK costs).
   const int threads = end - begin > std::max<vtkIdType>(grain, 1) ? GetNumberOfThreads() : 1;
   if (threads == 1)
