@@ -2,6 +2,8 @@
 #ifndef catarBenchmarkScene_h
 #define catarBenchmarkScene_h
 
+#include "../Cxx/TestCameras.h"
+
 #include "vtkCatadioptricCamera.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
@@ -19,17 +21,11 @@
 
 namespace catar_benchmark
 {
-/// The demo camera: at world (0, -0.14, 1), looking along +y at a 5 cm mirror 14 cm away.
+/// The demo camera (Testing/Cxx/TestCameras.h): at world (0, -0.14, 1), looking along +y at a 5 cm
+/// mirror 14 cm away.
 inline void DemoCamera(vtkCatadioptricCamera* cam)
 {
-  cam->SetImageWidth(1328);
-  cam->SetImageHeight(1048);
-  cam->SetFocalLength(1000, 1000);
-  cam->SetPrincipalPoint(663.5, 523.5);
-  cam->SetMirrorCenter(0, 0, 0.14);
-  cam->SetMirrorRadius(0.05);
-  const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
-  cam->SetWorldToCameraElements(pose);
+  cam->SetModel(catar_test::DemoCameraModel());
 }
 
 /// Moves `mesh` by `transform` applied after `before` (a transform to the origin, or null): the

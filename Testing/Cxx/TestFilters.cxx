@@ -37,18 +37,6 @@
 namespace
 {
 // Camera of the demo: at world (0, -0.14, 1) looking along +y at a 5 cm mirror.
-void DemoCamera(vtkCatadioptricCamera* cam)
-{
-  cam->SetImageWidth(640);
-  cam->SetImageHeight(480);
-  cam->SetFocalLength(480, 480);
-  cam->SetPrincipalPoint(319.5, 239.5);
-  cam->SetMirrorCenter(0, 0, 0.14);
-  cam->SetMirrorRadius(0.05);
-  const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
-  cam->SetWorldToCameraElements(pose);
-}
-
 vtkSmartPointer<vtkPolyData> SphereAt(double x, double y, double z, double r)
 {
   vtkNew<vtkSphereSource> s;
@@ -64,7 +52,7 @@ vtkSmartPointer<vtkPolyData> SphereAt(double x, double y, double z, double r)
 TEST(vtkCatadioptricCamera, FieldDataAndFileRoundTrip)
 {
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   cam->SetDistortion(-0.1, 0.01, 0.001, 0.002, 0.0);
   ASSERT_TRUE(cam->IsValid()) << cam->GetLastError();
   vtkNew<vtkFieldData> fd;
@@ -101,7 +89,7 @@ TEST(vtkCatadioptricCamera, FieldDataAndFileRoundTrip)
 TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)
 {
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   vtkNew<vtkCatadioptricProjection> proj;
   proj->SetCamera(cam);
   proj->SetInputData(SphereAt(0.1, -0.35, 0.9, 0.04));
@@ -175,7 +163,7 @@ TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)
 TEST(vtkCatadioptricProjection, CellsWithAHiddenVertexAreInvisible)
 {
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   // A sphere straddling the mirror's shadow: behind the mirror (world y > 0.05) some vertices are
   // hidden, some cells are invisible, none is NaN.
   vtkNew<vtkCatadioptricProjection> proj;
@@ -221,7 +209,7 @@ TEST(vtkCatadioptricProjection, CellsWithAHiddenVertexAreInvisible)
 TEST(vtkCatadioptricProjection, BackFaceCullingDropsExactlyTheCellsFacingAway)
 {
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   vtkNew<vtkSphereSource> sphere; // closed, outward normals
   sphere->SetCenter(0.1, -0.3, 0.95);
   sphere->SetRadius(0.05);
@@ -299,7 +287,7 @@ TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
   EXPECT_NE(errors->Last.find("No camera"), std::string::npos) << errors->Last;
   // An invalid camera (camera inside the mirror).
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   cam->SetMirrorCenter(0, 0, 0.01);
   proj->SetCamera(cam);
   proj->Update();
@@ -314,7 +302,7 @@ TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
   EXPECT_EQ(errors->Count, 3);
   EXPECT_NE(errors->Last.find("/nonexistent/calibration.yaml"), std::string::npos);
   // Empty input is fine.
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   proj->SetCamera(cam);
   vtkNew<vtkPolyData> empty;
   proj->SetInputData(empty);
@@ -344,7 +332,7 @@ TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
 TEST(vtkCatadioptricPainterSort, FarToNearWithCellDataAligned)
 {
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   vtkNew<vtkCatadioptricProjection> proj;
   proj->SetCamera(cam);
   vtkSmartPointer<vtkPolyData> sphere = SphereAt(0.05, -0.3, 0.95, 0.06);

@@ -25,18 +25,6 @@
 
 namespace
 {
-void DemoCamera(vtkCatadioptricCamera* cam)
-{
-  cam->SetImageWidth(640);
-  cam->SetImageHeight(480);
-  cam->SetFocalLength(480, 480);
-  cam->SetPrincipalPoint(319.5, 239.5);
-  cam->SetMirrorCenter(0, 0, 0.14);
-  cam->SetMirrorRadius(0.05);
-  const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
-  cam->SetWorldToCameraElements(pose);
-}
-
 vtkSmartPointer<vtkPolyData> Plate(double x0, double x1, double y0, double y1, double z, int res)
 {
   vtkNew<vtkPlaneSource> plane;
@@ -59,7 +47,7 @@ std::array<double, 3> ColorAt(vtkDataArray* colors, vtkIdType i)
 TEST(vtkCatadioptricLighting, GouraudUsesTheVertexReflectionPointAsViewer)
 {
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   vtkNew<vtkSphereSource> sphere;
   sphere->SetCenter(0.05, -0.3, 0.95);
   sphere->SetRadius(0.04);
@@ -140,7 +128,7 @@ TEST(vtkCatadioptricLighting, GouraudUsesTheVertexReflectionPointAsViewer)
 TEST(vtkCatadioptricLighting, LowerPlateIsDarkExactlyInTheUmbra)
 {
   vtkNew<vtkCatadioptricCamera> cam;
-  DemoCamera(cam);
+  catar_test::SetSmallDemoCamera(cam);
   // Lower plate 30 x 30 cm at z = 0.80, upper plate 8 x 8 cm at z = 0.90, behind the camera.
   const double zl = 0.80, zu = 0.90;
   const double ux0 = -0.04, ux1 = 0.04, uy0 = -0.44, uy1 = -0.36;

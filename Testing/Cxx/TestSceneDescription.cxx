@@ -1,6 +1,9 @@
 // Scene files: the demo scene parses; errors name the key; paths resolve against the scene.
 #include "SceneDescription.h"
 
+#include "CalibrationIO.h"
+#include "TestCameras.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -28,6 +31,28 @@ TEST(SceneDescription, DemoSceneParses)
   EXPECT_EQ(s.objects[1].type, "torus");
   EXPECT_EQ(s.background.type, "environment");
   EXPECT_TRUE(s.camera.Validate().empty());
+}
+
+// The one demo rig of the tests (TestCameras.h) is the demo calibration file's and the built-in
+// demo scene's camera.
+TEST(SceneDescription, DemoCamerasAgree)
+{
+  const CameraModel rig = catar_test::DemoCameraModel();
+  CameraModel file;
+  std::string error;
+  ASSERT_TRUE(LoadCalibration(
+    std::string(CATAR_SOURCE_DIR) + "/Data/calibration/demo-camera.yaml", file, error))
+    << error;
+  for (const CameraModel& m : { file, DemoScene().camera })
+  {
+    EXPECT_EQ(m.intrinsics.width, rig.intrinsics.width);
+    EXPECT_EQ(m.intrinsics.height, rig.intrinsics.height);
+    EXPECT_EQ(m.K(), rig.K());
+    EXPECT_TRUE(m.distortion.IsZero());
+    EXPECT_EQ(m.mirror.center, rig.mirror.center);
+    EXPECT_EQ(m.mirror.radius, rig.mirror.radius);
+    EXPECT_EQ(m.worldToCamera, rig.worldToCamera);
+  }
 }
 
 TEST(SceneDescription, ObjectsAndDefaults)

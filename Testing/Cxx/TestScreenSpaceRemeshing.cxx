@@ -9,7 +9,9 @@
 #include "EdgeBend.h"
 #include "SphereProjection.h"
 
+#include "TestCameras.h"
 #include <Eigen/Geometry>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,17 +31,6 @@ using namespace catar::mesh;
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-
-/// The built-in demo's camera (SceneDescription.cxx): a 5 cm mirror 14 cm in front of the camera,
-/// 1328 x 1048 pixels; the camera sits at world (0, -0.14, 1) and looks along +y.
-CameraModel DemoCamera()
-{
-  CameraModel m;
-  m.intrinsics = Intrinsics{ 1000.0, 1000.0, 663.5, 523.5, 0.0, 1328, 1048 };
-  m.mirror = SphereMirror{ Vec3(0.0, 0.0, 0.14), 0.05 };
-  m.worldToCamera << 1, 0, 0, 0, 0, 0, -1, 1, 0, 1, 0, 0.14, 0, 0, 0, 1;
-  return m;
-}
 
 /// A tilted 6 cm mirror 20 cm away, with lens distortion and skew (as in TestSphereProjection).
 CameraModel TiltedCamera()
@@ -381,7 +372,7 @@ struct PlacementCase
 // seen in the mirror.
 TEST(ScreenSpaceRemeshing, BoxInDemoCameraMeetsTolerance)
 {
-  const SphereProjector projector(DemoCamera());
+  const SphereProjector projector(catar_test::DemoCameraModel());
   ASSERT_TRUE(projector.IsValid()) << projector.GetError();
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
@@ -501,7 +492,7 @@ TEST(ScreenSpaceRemeshing, SphereBehindMirrorMeetsTolerance)
 TEST(ScreenSpaceRemeshing, RejectsBadOptionsAndInput)
 {
   const TriangleMesh box = MakeBox(Vec3(0.2, 0.15, 0.1), 0.0, Vec3(0.1, -0.3, 0.9));
-  const SphereProjector projector(DemoCamera());
+  const SphereProjector projector(catar_test::DemoCameraModel());
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
   };
@@ -581,7 +572,7 @@ TEST(ScreenSpaceRemeshing, UnseenObjectStaysCoarse)
 // and a warning says why.
 TEST(ScreenSpaceRemeshing, ReportsUnreachableTolerance)
 {
-  const SphereProjector projector(DemoCamera());
+  const SphereProjector projector(catar_test::DemoCameraModel());
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
   };
@@ -616,7 +607,7 @@ TEST(ScreenSpaceRemeshing, ReportsUnreachableTolerance)
 // An open surface keeps its boundary; point data follow; progress is reported.
 TEST(ScreenSpaceRemeshing, OpenSurfaceKeepsBoundaryAndPointData)
 {
-  const SphereProjector projector(DemoCamera());
+  const SphereProjector projector(catar_test::DemoCameraModel());
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
   };

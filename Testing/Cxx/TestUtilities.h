@@ -2,6 +2,8 @@
 #ifndef catarTestUtilities_h
 #define catarTestUtilities_h
 
+#include "TestCameras.h"
+
 #include "vtkCatadioptricCamera.h"
 #include "vtkCommand.h"
 #include "vtkObject.h"
@@ -42,16 +44,19 @@ public:
   int Count = 0;
   std::string All;
 };
-#ifdef CATAR_SOURCE_DIR
-/// The demo camera (Data/calibration/demo-camera.yaml): 1328 x 1048, a 5 cm mirror 14 cm ahead.
+/// The demo camera (TestCameras.h: DemoCameraModel()): 1328 x 1048, a 5 cm mirror 14 cm ahead.
 inline vtkSmartPointer<vtkCatadioptricCamera> DemoCamera()
 {
   auto camera = vtkSmartPointer<vtkCatadioptricCamera>::New();
-  const std::string file = std::string(CATAR_SOURCE_DIR) + "/Data/calibration/demo-camera.yaml";
-  EXPECT_TRUE(camera->Load(file.c_str())) << camera->GetLastError();
+  camera->SetModel(DemoCameraModel());
   return camera;
 }
-#endif
+
+/// Makes `camera` the demo rig with the smaller image (TestCameras.h: SmallDemoCameraModel()).
+inline void SetSmallDemoCamera(vtkCatadioptricCamera* camera)
+{
+  camera->SetModel(SmallDemoCameraModel());
+}
 
 } // namespace catar_test
 
