@@ -114,74 +114,27 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
 vtkCatadioptricCompositor::vtkCatadioptricCompositor()
   : Bins(new vtkCatadioptricTriangleBins)
 {
-  this->SetNumberOfInputPorts(3);
-  this->SetColorArrayName(vtkCatadioptricArrayNames::Colors);
 }
 
-vtkCatadioptricCompositor::~vtkCatadioptricCompositor()
-{
-  this->SetColorArrayName(nullptr);
-}
+vtkCatadioptricCompositor::~vtkCatadioptricCompositor() = default;
 
-int vtkCatadioptricCompositor::FillInputPortInformation(int port, vtkInformation* info)
+void vtkCatadioptricCompositor::ImageSizeWithoutFrame(
+  vtkInformationVector** inputVector, int size[2])
 {
-  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
-  if (port == 0)
+  // A wrong guess would make ParaView's image views refuse the output.
+  size[0] = this->ImageSize[0];
+  size[1] = this->ImageSize[1];
+  for (int m = 0;
+       (size[0] <= 0 || size[1] <= 0) && m < inputVector[1]->GetNumberOfInformationObjects(); ++m)
   {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  }
-  else if (port == 2)
-  {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
-  }
-  else
-  {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
-  }
-  return 1;
-}
-
-int vtkCatadioptricCompositor::RequestInformation(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  int extent[6] = { 0, 0, 0, 0, 0, 0 };
-  vtkInformation* frameInfo = inputVector[0]->GetInformationObject(0);
-  if (frameInfo && frameInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    frameInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  }
-  else
-  {
-    // Without a frame: ImageSize, else the size the projection announced for its camera
-    // (vtkCatadioptricCamera::IMAGE_SIZE, passed down by the filters in between), else the
-    // last size. A wrong guess would make ParaView's image views refuse the output.
-    int size[2] = { this->ImageSize[0], this->ImageSize[1] };
-    for (int m = 0;
-         (size[0] <= 0 || size[1] <= 0) && m < inputVector[1]->GetNumberOfInformationObjects(); ++m)
+    vtkInformation* meshInfo = inputVector[1]->GetInformationObject(m);
+    if (meshInfo->Has(vtkCatadioptricCamera::IMAGE_SIZE()))
     {
-      vtkInformation* meshInfo = inputVector[1]->GetInformationObject(m);
-      if (meshInfo->Has(vtkCatadioptricCamera::IMAGE_SIZE()))
-      {
-        meshInfo->Get(vtkCatadioptricCamera::IMAGE_SIZE(), size);
-      }
+      meshInfo->Get(vtkCatadioptricCamera::IMAGE_SIZE(), size);
     }
-    extent[1] = (size[0] > 0 ? size[0] : std::max(1, this->LastSize[0])) - 1;
-    extent[3] = (size[1] > 0 ? size[1] : std::max(1, this->LastSize[1])) - 1;
   }
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
-  return 1;
-}
-
-int vtkCatadioptricCompositor::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
-{
-  // The whole frame and whole textures are always needed, whatever the output's extent.
-  vtkCatadioptricImageSupport::RequestWholeExtents(inputVector, { 0, 2 });
-  return 1;
+  size[0] = size[0] > 0 ? size[0] : std::max(1, this->LastSize[0]);
+  size[1] = size[1] > 0 ? size[1] : std::max(1, this->LastSize[1]);
 }
 
 int vtkCatadioptricCompositor::RequestData(
@@ -507,16 +460,5 @@ const char* vtkCatadioptricCompositor::GetVisibilityAsString()
 void vtkCatadioptricCompositor::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Color: " << this->Color[0] << ", " << this->Color[1] << ", " << this->Color[2]
-     << "\n";
-  os << indent << "Opacity: " << this->Opacity << "\n";
-  os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)")
-     << "\n";
-  os << indent << "BackgroundColor: " << this->BackgroundColor[0] << ", "
-     << this->BackgroundColor[1] << ", " << this->BackgroundColor[2] << ", "
-     << this->BackgroundColor[3] << "\n";
-  os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
-  os << indent << "RepeatTextures: " << (this->RepeatTextures ? "On" : "Off") << "\n";
   os << indent << "Visibility: " << this->GetVisibilityAsString() << "\n";
-  os << indent << "OutputVisibleTriangle: " << (this->OutputVisibleTriangle ? "On" : "Off") << "\n";
 }

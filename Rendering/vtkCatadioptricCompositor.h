@@ -55,7 +55,7 @@
 #define vtkCatadioptricCompositor_h
 
 #include "CatadioptricARRenderingModule.h" // for export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkCatadioptricImageSink.h"
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
 #include <memory> // for std::unique_ptr
@@ -64,62 +64,15 @@
 class vtkCatadioptricTriangleBins;
 class vtkTypeInt64Array;
 
-class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricCompositor : public vtkImageAlgorithm
+class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricCompositor : public vtkCatadioptricImageSink
 {
 public:
   static vtkCatadioptricCompositor* New();
-  vtkTypeMacro(vtkCatadioptricCompositor, vtkImageAlgorithm);
+  vtkTypeMacro(vtkCatadioptricCompositor, vtkCatadioptricImageSink);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /// The camera frame (port 0) and the projected meshes (port 1, several connections allowed).
-  void SetFrameConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(0, output); }
-  void SetFrameData(vtkDataObject* frame) { this->SetInputData(0, frame); }
-  void AddMeshConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
-  void AddMeshData(vtkDataObject* mesh) { this->AddInputData(1, mesh); }
-  void RemoveAllMeshConnections() { this->RemoveAllInputConnections(1); }
-  /// Textures (port 2, several allowed): unsigned char images with 1, 3 or 4 components.
-  void AddTextureConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(2, output); }
-  void AddTextureData(vtkDataObject* texture) { this->AddInputData(2, texture); }
-  void RemoveAllTextureConnections() { this->RemoveAllInputConnections(2); }
-  ///@}
-
-  ///@{
-  /// Texture addressing beyond [0, 1]: repeat (on) or clamp to the edge (off, default).
-  vtkSetMacro(RepeatTextures, bool);
-  vtkGetMacro(RepeatTextures, bool);
-  vtkBooleanMacro(RepeatTextures, bool);
-  ///@}
-
-  ///@{
-  /// Solid colour (RGB in [0,1]) for meshes without a colour array.
-  vtkSetVector3Macro(Color, double);
-  vtkGetVector3Macro(Color, double);
-  ///@}
-
-  ///@{
-  /// Opacity multiplied into every drawn colour, in [0,1].
-  vtkSetClampMacro(Opacity, double, 0.0, 1.0);
-  vtkGetMacro(Opacity, double);
-  ///@}
-
-  ///@{
-  /// Name of the colour array (point or cell data). Default "Colors".
-  vtkSetStringMacro(ColorArrayName);
-  vtkGetStringMacro(ColorArrayName);
-  ///@}
-
-  ///@{
-  /// Background (RGBA in [0,1]) used when no frame is connected.
-  vtkSetVector4Macro(BackgroundColor, double);
-  vtkGetVector4Macro(BackgroundColor, double);
-  ///@}
-
-  ///@{
-  /// Output size when no frame is connected; (0,0) means the camera's image size.
-  vtkSetVector2Macro(ImageSize, int);
-  vtkGetVector2Macro(ImageSize, int);
-  ///@}
+  // Ports, Color, Opacity, ColorArrayName, BackgroundColor, ImageSize, RepeatTextures and
+  // OutputVisibleTriangle: vtkCatadioptricImageSink.
 
   /// How the surface seen in each pixel is chosen (see the class comment).
   enum Visibilities
@@ -137,14 +90,6 @@ public:
   ///@}
 
   ///@{
-  /// Add the point-data array "VisibleTriangle" (per-pixel id of the drawn triangle; see the class
-  /// comment) to the output. Default off.
-  vtkSetMacro(OutputVisibleTriangle, bool);
-  vtkGetMacro(OutputVisibleTriangle, bool);
-  vtkBooleanMacro(OutputVisibleTriangle, bool);
-  ///@}
-
-  ///@{
   /// Statistics of the last execution: triangles sent to the rasteriser, and triangles skipped
   /// because their cell was not visible.
   vtkGetMacro(NumberOfDrawnTriangles, vtkIdType);
@@ -155,19 +100,13 @@ protected:
   vtkCatadioptricCompositor();
   ~vtkCatadioptricCompositor() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// ImageSize, else the size the projection announced for its camera
+  /// (vtkCatadioptricCamera::IMAGE_SIZE, passed down by the filters in between), else the last
+  /// size.
+  void ImageSizeWithoutFrame(vtkInformationVector** inputVector, int size[2]) override;
 
-  double Color[3] = { 0.8, 0.8, 0.8 };
-  double Opacity = 1.0;
-  char* ColorArrayName = nullptr;
-  double BackgroundColor[4] = { 0.0, 0.0, 0.0, 1.0 };
-  int ImageSize[2] = { 0, 0 };
-  bool RepeatTextures = false;
   int Visibility = PAINTER;
-  bool OutputVisibleTriangle = false;
   int LastSize[2] = { 0, 0 };
   vtkIdType NumberOfDrawnTriangles = 0;
   vtkIdType NumberOfSkippedTriangles = 0;

@@ -96,14 +96,9 @@ catar::Vec3 V3(const double v[3])
 vtkCatadioptricRayTracer::vtkCatadioptricRayTracer()
   : Internal(new Internals)
 {
-  this->SetNumberOfInputPorts(3);
-  this->SetColorArrayName(vtkCatadioptricArrayNames::Colors);
 }
 
-vtkCatadioptricRayTracer::~vtkCatadioptricRayTracer()
-{
-  this->SetColorArrayName(nullptr);
-}
+vtkCatadioptricRayTracer::~vtkCatadioptricRayTracer() = default;
 
 void vtkCatadioptricRayTracer::SetMeshLighting(int index, vtkCatadioptricLighting* lighting)
 {
@@ -153,48 +148,20 @@ vtkMTimeType vtkCatadioptricRayTracer::GetMTime()
   return t;
 }
 
-int vtkCatadioptricRayTracer::FillInputPortInformation(int port, vtkInformation* info)
+void vtkCatadioptricRayTracer::ImageSizeWithoutFrame(vtkInformationVector**, int size[2])
 {
-  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 1 ? "vtkPolyData" : "vtkImageData");
-  if (port != 0)
+  size[0] = size[1] = 0;
+  if (this->ImageSize[0] > 0 && this->ImageSize[1] > 0)
   {
-    info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
-  }
-  return 1;
-}
-
-int vtkCatadioptricRayTracer::RequestInformation(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  int extent[6] = { 0, 0, 0, 0, 0, 0 };
-  vtkInformation* frameInfo = inputVector[0]->GetInformationObject(0);
-  if (frameInfo && frameInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    frameInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  }
-  else if (this->ImageSize[0] > 0 && this->ImageSize[1] > 0)
-  {
-    extent[1] = this->ImageSize[0] - 1;
-    extent[3] = this->ImageSize[1] - 1;
+    size[0] = this->ImageSize[0];
+    size[1] = this->ImageSize[1];
   }
   else if (std::string ignored; vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(ignored))
   {
     // RequestData reports a missing camera.
-    extent[1] = std::max(1, camera->GetImageWidth()) - 1;
-    extent[3] = std::max(1, camera->GetImageHeight()) - 1;
+    size[0] = camera->GetImageWidth();
+    size[1] = camera->GetImageHeight();
   }
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
-  return 1;
-}
-
-int vtkCatadioptricRayTracer::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
-{
-  vtkCatadioptricImageSupport::RequestWholeExtents(inputVector, { 0, 2 });
-  return 1;
 }
 
 int vtkCatadioptricRayTracer::RequestData(
@@ -524,13 +491,6 @@ void vtkCatadioptricRayTracer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Samples: " << this->Samples << "\n";
-  os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)")
-     << "\n";
-  os << indent << "Color: " << this->Color[0] << " " << this->Color[1] << " " << this->Color[2]
-     << "\n";
-  os << indent << "Opacity: " << this->Opacity << "\n";
-  os << indent << "RepeatTextures: " << this->RepeatTextures << "\n";
-  os << indent << "OutputVisibleTriangle: " << this->OutputVisibleTriangle << "\n";
   os << indent << "NumberOfMirrorRays: " << this->NumberOfMirrorRays << "\n";
   os << indent << "NumberOfTracedRays: " << this->NumberOfTracedRays << "\n";
   os << indent << "NumberOfHits: " << this->NumberOfHits << "\n";

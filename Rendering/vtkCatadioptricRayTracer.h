@@ -37,31 +37,22 @@
 
 #include "CatadioptricARRenderingModule.h" // for export macro
 #include "vtkCatadioptricCameraSlot.h"     // for member
-#include "vtkImageAlgorithm.h"
+#include "vtkCatadioptricImageSink.h"
 
 #include <memory> // for std::unique_ptr
 
 class vtkCatadioptricCamera;
 class vtkCatadioptricLighting;
 
-class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricRayTracer : public vtkImageAlgorithm
+class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricRayTracer : public vtkCatadioptricImageSink
 {
 public:
   static vtkCatadioptricRayTracer* New();
-  vtkTypeMacro(vtkCatadioptricRayTracer, vtkImageAlgorithm);
+  vtkTypeMacro(vtkCatadioptricRayTracer, vtkCatadioptricImageSink);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /// The camera frame (port 0), the meshes (port 1, several) and textures (port 2, several).
-  void SetFrameConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(0, output); }
-  void SetFrameData(vtkDataObject* frame) { this->SetInputData(0, frame); }
-  void AddMeshConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(1, output); }
-  void AddMeshData(vtkDataObject* mesh) { this->AddInputData(1, mesh); }
-  void RemoveAllMeshConnections() { this->RemoveAllInputConnections(1); }
-  void AddTextureConnection(vtkAlgorithmOutput* output) { this->AddInputConnection(2, output); }
-  void AddTextureData(vtkDataObject* texture) { this->AddInputData(2, texture); }
-  void RemoveAllTextureConnections() { this->RemoveAllInputConnections(2); }
-  ///@}
+  // Ports, Color, Opacity, ColorArrayName, BackgroundColor, ImageSize, RepeatTextures and
+  // OutputVisibleTriangle: vtkCatadioptricImageSink.
 
   ///@{
   /// The camera; takes precedence over CalibrationFileName.
@@ -86,38 +77,6 @@ public:
   ///@}
 
   ///@{
-  /// Unlit meshes: colour array name (default "Colors"), solid colour, and opacity of all meshes.
-  vtkSetStringMacro(ColorArrayName);
-  vtkGetStringMacro(ColorArrayName);
-  vtkSetVector3Macro(Color, double);
-  vtkGetVector3Macro(Color, double);
-  vtkSetClampMacro(Opacity, double, 0.0, 1.0);
-  vtkGetMacro(Opacity, double);
-  ///@}
-
-  ///@{
-  /// Without a frame: the background colour (RGBA) and image size (0: the camera's).
-  vtkSetVector4Macro(BackgroundColor, double);
-  vtkGetVector4Macro(BackgroundColor, double);
-  vtkSetVector2Macro(ImageSize, int);
-  vtkGetVector2Macro(ImageSize, int);
-  ///@}
-
-  ///@{
-  /// Texture coordinates outside [0,1] repeat (default) or clamp, as in the compositor.
-  vtkSetMacro(RepeatTextures, bool);
-  vtkGetMacro(RepeatTextures, bool);
-  vtkBooleanMacro(RepeatTextures, bool);
-  ///@}
-
-  ///@{
-  /// Add the "VisibleTriangle" point data to the output. Default off.
-  vtkSetMacro(OutputVisibleTriangle, bool);
-  vtkGetMacro(OutputVisibleTriangle, bool);
-  vtkBooleanMacro(OutputVisibleTriangle, bool);
-  ///@}
-
-  ///@{
   /// Counts of the last render: rays that reflect off the mirror, rays traced into the scene's
   /// bounds, hits, and shadow rays.
   vtkGetMacro(NumberOfMirrorRays, vtkIdType);
@@ -133,22 +92,14 @@ protected:
   vtkCatadioptricRayTracer();
   ~vtkCatadioptricRayTracer() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// ImageSize, else the camera's image size.
+  void ImageSizeWithoutFrame(vtkInformationVector** inputVector, int size[2]) override;
 
   vtkCatadioptricCamera* ResolveCamera();
 
   vtkCatadioptricCameraSlot CameraSlot;
   int Samples = 1;
-  char* ColorArrayName = nullptr;
-  double Color[3] = { 1.0, 1.0, 1.0 };
-  double Opacity = 1.0;
-  double BackgroundColor[4] = { 0.0, 0.0, 0.0, 1.0 };
-  int ImageSize[2] = { 0, 0 };
-  bool RepeatTextures = true;
-  bool OutputVisibleTriangle = false;
   vtkIdType NumberOfMirrorRays = 0;
   vtkIdType NumberOfTracedRays = 0;
   vtkIdType NumberOfHits = 0;
