@@ -266,7 +266,7 @@ int WordSize(const std::string& type)
 {
   static const std::map<std::string, int> sizes = { { "Int8", 1 }, { "UInt8", 1 }, { "Int16", 2 },
     { "UInt16", 2 }, { "Int32", 4 }, { "UInt32", 4 }, { "Int64", 8 }, { "UInt64", 8 },
-    { "Float32", 4 }, { "Float64", 8 }, { "String", 1 } };
+    { "Float32", 4 }, { "Float64", 8 }, { "String", 1 }, { "Bit", 1 } };
   const auto it = sizes.find(type);
   return it == sizes.end() ? 0 : it->second;
 }
@@ -553,6 +553,12 @@ std::uint64_t CountAscii(const Element& array, std::uint64_t need, std::vector<d
   return n;
 }
 
+// A data array (<DataArray>) or another VTK array: strings and variants are written as <Array>.
+bool IsArray(const Element& e)
+{
+  return e.name == "DataArray" || e.name == "Array";
+}
+
 std::string ArrayName(const Element& array)
 {
   const std::string* name = array.Attribute("Name");
@@ -581,10 +587,8 @@ void CheckArray(const File& f, const Element& array, std::uint64_t tuples, int c
   {
     throw VtpError(ArrayName(array) + ": format must be ascii, binary or appended");
   }
-  if (*type == "String")
-  {
-    return; // read as bytes, sized by their data
-  }
+  // String arrays are bytes (ASCII: their codes), each string ended by a 0: at least one a string,
+  // which the count below checks like any other array's values.
   if (*format == "ascii")
   {
     const std::uint64_t have = CountAscii(array, need, values);
@@ -596,7 +600,9 @@ void CheckArray(const File& f, const Element& array, std::uint64_t tuples, int c
     return;
   }
   std::string bytes;
-  const std::uint64_t have = ReadBinary(f, array, values != nullptr, bytes) / word;
+  // Bits are packed eight a byte.
+  const std::uint64_t have =
+    ReadBinary(f, array, values != nullptr, bytes) / word * (*type == "Bit" ? 8 : 1);
   if (have < need)
   {
     throw VtpError(ArrayName(array) + " has " + std::to_string(have) + " values, but " +
@@ -686,7 +692,7 @@ void CheckCells(const File& f, const Element& piece, const char* section, std::u
 // pieces too, naming each component: a component count of 2^32 keeps it busy for minutes).
 void CheckArrayHeaders(const Element& e)
 {
-  if (e.name == "DataArray")
+  if (IsArray(e))
   {
     const std::string* type = e.Attribute("type");
     if (!type || WordSize(*type) == 0)
@@ -715,7 +721,7 @@ void CheckUniqueNames(const Element& data)
   for (const Element& array : data.children)
   {
     const std::string* name = array.Attribute("Name");
-    if (array.name != "DataArray" || !name || name->empty())
+    if (!IsArray(array) || !name || name->empty())
     {
       continue;
     }
@@ -766,7 +772,7 @@ void CheckPiece(const File& f, const Element& piece)
       CheckUniqueNames(*data);
       for (const Element& array : data->children)
       {
-        if (array.name == "DataArray")
+        if (IsArray(array))
         {
           CheckArray(f, array, tuples, 0, nullptr);
         }
@@ -860,7 +866,7 @@ bool CheckVtpFile(const std::string& path, std::string& error)
         CheckUniqueNames(child);
         for (const Element& array : child.children)
         {
-          if (array.name == "DataArray")
+          if (IsArray(array))
           {
             CheckArray(f, array, Count(array, "NumberOfTuples", 0), 0, nullptr);
           }

@@ -1,10 +1,11 @@
 // The .vtp check (Module/VtpFileCheck.cxx) against VTK's own writer and reader: every file
 // vtkXMLPolyDataWriter makes (ASCII, inline binary, appended raw and base64; no compression,
 // zlib, LZ4, LZMA; 32- and 64-bit headers; verts, lines, strips, polygons, point, cell and field
-// data) passes and reads back whole; files whose counts, block tables or offsets lie are refused
-// with a sentence before the reader sees them.
+// data, string and bit arrays) passes and reads back whole; files whose counts, block tables or
+// offsets lie are refused with a sentence before the reader sees them.
 #include "MeshFileCheck.h"
 
+#include "vtkBitArray.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
@@ -16,6 +17,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
+#include "vtkStringArray.h"
 #include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
@@ -74,6 +76,26 @@ vtkSmartPointer<vtkPolyData> RichMesh()
   field->SetNumberOfComponents(2);
   field->InsertNextTuple2(7, 8);
   mesh->GetFieldData()->AddArray(field);
+  vtkNew<vtkStringArray> names;
+  names->SetName("Names");
+  names->InsertNextValue("sphere");
+  names->InsertNextValue("");
+  names->InsertNextValue("strips and lines");
+  mesh->GetFieldData()->AddArray(names);
+  vtkNew<vtkStringArray> labels;
+  labels->SetName("Labels");
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    labels->InsertNextValue(i % 3 ? "p" : "");
+  }
+  mesh->GetPointData()->AddArray(labels);
+  vtkNew<vtkBitArray> flags;
+  flags->SetName("Flags");
+  for (vtkIdType i = 0; i < mesh->GetNumberOfCells(); ++i)
+  {
+    flags->InsertNextValue(static_cast<int>(i % 2));
+  }
+  mesh->GetCellData()->AddArray(flags);
   return mesh;
 }
 
@@ -162,6 +184,9 @@ TEST(VtpFileCheck, LyingFilesAreRefused)
     { vtkXMLWriter::Ascii, vtkXMLWriter::NONE, "</PolyData>", "</Poly>", "closed by" },
     { vtkXMLWriter::Ascii, vtkXMLWriter::NONE, "type=\"PolyData\"", "type=\"ImageData\"",
       "not a PolyData file" },
+    // A string array that announces more strings than it has bytes.
+    { vtkXMLWriter::Binary, vtkXMLWriter::ZLIB, "Name=\"Names\" NumberOfTuples=\"3\"",
+      "Name=\"Names\" NumberOfTuples=\"300000000\"", "array 'Names' has" },
     // Two cell arrays of one name: the reader read into the one the data set had dropped.
     { vtkXMLWriter::Ascii, vtkXMLWriter::NONE, "Name=\"Second\"", "Name=\"CellValue\"",
       "<CellData> has two arrays named 'CellValue'" },
