@@ -131,7 +131,10 @@ bool vtkCatadioptricLightingSupport::ReadMaterials(vtkPolyData* mesh, const doub
       ", but 'Materials' has " + std::to_string(count) + ".";
     return false;
   }
-  for (vtkIdType i = 0; i < index->GetNumberOfTuples(); ++i)
+  // Only a floating-point index can hold a fraction (the check runs every frame).
+  const int type = index->GetDataType();
+  const bool floating = type == VTK_FLOAT || type == VTK_DOUBLE;
+  for (vtkIdType i = 0; floating && i < index->GetNumberOfTuples(); ++i)
   {
     const double m = index->GetComponent(i, 0);
     if (m != std::floor(m))

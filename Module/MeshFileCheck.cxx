@@ -11,9 +11,7 @@
 
 namespace catar
 {
-namespace
-{
-bool FileSize(const std::string& path, std::uint64_t& size, std::string& error)
+bool MeshFileSize(const std::string& path, std::uint64_t& size, std::string& error)
 {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in)
@@ -37,6 +35,8 @@ bool FileSize(const std::string& path, std::uint64_t& size, std::string& error)
   return true;
 }
 
+namespace
+{
 std::string Lower(std::string s)
 {
   std::transform(s.begin(), s.end(), s.begin(),
@@ -71,7 +71,7 @@ bool ParseCount(const std::string& word, std::uint64_t limit, std::uint64_t& val
 bool CheckPlyFile(const std::string& path, std::string& error)
 {
   std::uint64_t size = 0;
-  if (!FileSize(path, size, error))
+  if (!MeshFileSize(path, size, error))
   {
     return false;
   }
@@ -411,7 +411,7 @@ bool CheckPlyFile(const std::string& path, std::string& error)
 bool CheckLegacyVtkFile(const std::string& path, std::string& error)
 {
   std::uint64_t size = 0;
-  if (!FileSize(path, size, error))
+  if (!MeshFileSize(path, size, error))
   {
     return false;
   }
@@ -485,7 +485,7 @@ bool CheckLegacyVtkFile(const std::string& path, std::string& error)
 bool CheckObjFile(const std::string& path, std::string& error)
 {
   std::uint64_t size = 0;
-  if (!FileSize(path, size, error))
+  if (!MeshFileSize(path, size, error))
   {
     return false;
   }
@@ -559,7 +559,7 @@ bool CheckObjFile(const std::string& path, std::string& error)
 bool CheckStlFile(const std::string& path, std::string& error)
 {
   std::uint64_t size = 0;
-  if (!FileSize(path, size, error))
+  if (!MeshFileSize(path, size, error))
   {
     return false;
   }
@@ -618,6 +618,6 @@ bool CheckMeshFile(const std::string& path, std::string& error)
     return CheckObjFile(path, error);
   }
   std::uint64_t size = 0;
-  return FileSize(path, size, error);
+  return MeshFileSize(path, size, error);
 }
 } // namespace catar

@@ -13,6 +13,10 @@ namespace catar
 /// The largest mesh file read, in bytes (2 GiB).
 constexpr std::uint64_t kMaxMeshFileBytes = std::uint64_t(1) << 31;
 
+/// The size of a mesh file; false with a sentence in `error` when it cannot be opened or read, or
+/// is larger than kMaxMeshFileBytes.
+bool MeshFileSize(const std::string& path, std::uint64_t& size, std::string& error);
+
 /// Checks the header of a PLY file (ASCII or binary): its syntax, and that the elements it
 /// announces fit in the bytes that follow it (each binary element takes at least the sizes of
 /// its properties, each ASCII element at least one line). False with a sentence in `error`.

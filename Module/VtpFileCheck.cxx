@@ -788,22 +788,14 @@ bool CheckVtpFile(const std::string& path, std::string& error)
   {
     File f;
     {
-      std::ifstream in(path, std::ios::binary | std::ios::ate);
-      if (!in)
+      std::uint64_t size = 0;
+      if (!MeshFileSize(path, size, error))
       {
-        error = path + ": cannot open the mesh file";
         return false;
       }
-      const std::streamoff size = in.tellg();
-      if (size < 0 || static_cast<std::uint64_t>(size) > kMaxMeshFileBytes)
-      {
-        error = path + ": the mesh file is larger than the limit of " +
-          std::to_string(kMaxMeshFileBytes) + " bytes";
-        return false;
-      }
+      std::ifstream in(path, std::ios::binary);
       f.text.resize(static_cast<std::size_t>(size));
-      in.seekg(0);
-      in.read(&f.text[0], size);
+      in.read(&f.text[0], static_cast<std::streamsize>(size));
       if (!in)
       {
         error = path + ": cannot read the mesh file";
