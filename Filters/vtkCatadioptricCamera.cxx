@@ -2,7 +2,9 @@
 
 #include "CalibrationIO.h"
 #include "CameraModel.h"
-#include "SphereProjection.h"
+#include "Mirror.h"
+#include "Projector.h"
+#include "SceneDescription.h"
 
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
@@ -11,6 +13,7 @@
 #include "vtkInformationIntegerVectorKey.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkStringArray.h"
 
 #include <algorithm>
 
@@ -72,7 +75,8 @@ namespace
 {
 const char* const kIntrinsicsName = "CameraIntrinsics";
 const char* const kDistortionName = "CameraDistortion";
-const char* const kMirrorName = "MirrorSphere";
+const char* const kMirrorTypeName = "MirrorType";
+const char* const kMirrorParametersName = "MirrorParameters";
 const char* const kPoseName = "WorldToCamera";
 
 void AddArray(vtkFieldData* fd, const char* name, const double* values, int n)
@@ -104,6 +108,114 @@ bool GetArray(vtkFieldData* fd, const char* name, double* values, int n)
 vtkCatadioptricCamera::vtkCatadioptricCamera()
   : WorldToCamera(vtkSmartPointer<vtkMatrix4x4>::New())
 {
+  // The mirror of the demo rig (Data/scenes/demo.yaml), whose lens the defaults above are.
+  static const catar::MirrorDescription demoMirror = catar::DemoScene().camera.mirror;
+  this->MirrorType = demoMirror.type;
+  this->MirrorParameters = demoMirror.parameters;
+}
+
+bool vtkCatadioptricCamera::SetMirrorType(const char* type)
+{
+  const catar::MirrorType* t = type ? catar::FindMirrorType(type) : nullptr;
+  if (!t)
+  {
+    this->LastError = std::string("unknown mirror type '") + (type ? type : "(null)") +
+      "' (known: " + catar::MirrorTypeNames() + ")";
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+  if (this->MirrorType != t->name)
+  {
+    this->MirrorType = t->name;
+    this->MirrorParameters = t->defaults;
+    this->Modified();
+  }
+  return true;
+}
+
+std::vector<std::string> vtkCatadioptricCamera::GetMirrorTypes()
+{
+  std::vector<std::string> names;
+  for (const catar::MirrorType& t : catar::MirrorTypes())
+  {
+    names.push_back(t.name);
+  }
+  return names;
+}
+
+std::vector<std::string> vtkCatadioptricCamera::GetMirrorParameterKeys(const char* type)
+{
+  std::vector<std::string> keys;
+  if (const catar::MirrorType* t = type ? catar::FindMirrorType(type) : nullptr)
+  {
+    for (const catar::MirrorParameter& p : t->parameters)
+    {
+      keys.push_back(p.key);
+    }
+  }
+  return keys;
+}
+
+bool vtkCatadioptricCamera::SetMirrorParameter(const char* key, const std::vector<double>& values)
+{
+  const catar::MirrorType* t = catar::FindMirrorType(this->MirrorType);
+  const catar::MirrorParameter* p = t && key ? t->FindParameter(key) : nullptr;
+  if (!p || static_cast<int>(values.size()) != p->count)
+  {
+    this->LastError = !p
+      ? "a " + this->MirrorType + " mirror has no parameter '" + (key ? key : "(null)") + "'"
+      : "mirror parameter '" + p->key + "' takes " + std::to_string(p->count) + " numbers, not " +
+        std::to_string(values.size());
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+  if (static_cast<int>(this->MirrorParameters.size()) != t->ParameterCount())
+  {
+    this->MirrorParameters = t->defaults; // a malformed model given through SetModel
+  }
+  const auto offset = static_cast<std::size_t>(t->ParameterOffset(p->key));
+  if (!std::equal(values.begin(), values.end(), this->MirrorParameters.begin() + offset))
+  {
+    std::copy(values.begin(), values.end(), this->MirrorParameters.begin() + offset);
+    this->Modified();
+  }
+  return true;
+}
+
+bool vtkCatadioptricCamera::SetMirrorParameter(const char* key, double value)
+{
+  return this->SetMirrorParameter(key, std::vector<double>{ value });
+}
+
+std::vector<double> vtkCatadioptricCamera::GetMirrorParameter(const char* key)
+{
+  const catar::MirrorType* t = catar::FindMirrorType(this->MirrorType);
+  const catar::MirrorParameter* p = t && key ? t->FindParameter(key) : nullptr;
+  if (!p || static_cast<int>(this->MirrorParameters.size()) != t->ParameterCount())
+  {
+    return {};
+  }
+  const auto first = this->MirrorParameters.begin() + t->ParameterOffset(p->key);
+  return std::vector<double>(first, first + p->count);
+}
+
+bool vtkCatadioptricCamera::SetMirrorParameters(const std::vector<double>& values)
+{
+  const catar::MirrorType* t = catar::FindMirrorType(this->MirrorType);
+  if (!t || static_cast<int>(values.size()) != t->ParameterCount())
+  {
+    this->LastError = "a " + this->MirrorType + " mirror takes " +
+      std::to_string(t ? t->ParameterCount() : 0) + " numbers, not " +
+      std::to_string(values.size());
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+  if (values != this->MirrorParameters)
+  {
+    this->MirrorParameters = values;
+    this->Modified();
+  }
+  return true;
 }
 
 vtkCatadioptricCamera::~vtkCatadioptricCamera() = default;
@@ -167,9 +279,7 @@ catar::CameraModel vtkCatadioptricCamera::GetModel()
   m.intrinsics.height = this->ImageHeight;
   m.distortion = catar::Distortion{ this->Distortion[0], this->Distortion[1], this->Distortion[2],
     this->Distortion[3], this->Distortion[4] };
-  m.mirror.center =
-    catar::Vec3(this->MirrorCenter[0], this->MirrorCenter[1], this->MirrorCenter[2]);
-  m.mirror.radius = this->MirrorRadius;
+  m.mirror = catar::MirrorDescription(this->MirrorType, this->MirrorParameters);
   for (int r = 0; r < 4; ++r)
   {
     for (int c = 0; c < 4; ++c)
@@ -192,8 +302,8 @@ void vtkCatadioptricCamera::SetModel(const catar::CameraModel& m)
   const catar::Distortion& d = m.distortion;
   const double dist[5] = { d.k1, d.k2, d.p1, d.p2, d.k3 };
   std::copy(dist, dist + 5, this->Distortion);
-  std::copy(m.mirror.center.data(), m.mirror.center.data() + 3, this->MirrorCenter);
-  this->MirrorRadius = m.mirror.radius;
+  this->MirrorType = m.mirror.type;
+  this->MirrorParameters = m.mirror.parameters;
   for (int r = 0; r < 4; ++r)
   {
     for (int c = 0; c < 4; ++c)
@@ -259,7 +369,7 @@ int vtkCatadioptricCamera::ProjectWorldPoint(
 int vtkCatadioptricCamera::ProjectWorldPoint(
   const double point[3], double pixel[2], double mirrorPoint[3], int solver)
 {
-  const catar::SphereProjector proj(this->GetModel());
+  const catar::Projector proj(this->GetModel());
   const catar::ProjectedPoint q = proj.ProjectWorld(catar::Vec3(point[0], point[1], point[2]),
     solver == 1 ? catar::SolverType::Iterative : catar::SolverType::Quartic);
   pixel[0] = q.pixel.x();
@@ -271,7 +381,7 @@ int vtkCatadioptricCamera::ProjectWorldPoint(
 int vtkCatadioptricCamera::BackProjectPixel(
   const double pixel[2], double origin[3], double direction[3])
 {
-  const catar::SphereProjector proj(this->GetModel());
+  const catar::Projector proj(this->GetModel());
   const catar::BackProjectedRay r = proj.BackProjectWorld(catar::Vec2(pixel[0], pixel[1]));
   std::copy(r.mirrorPoint.data(), r.mirrorPoint.data() + 3, origin);
   std::copy(r.direction.data(), r.direction.data() + 3, direction);
@@ -289,9 +399,13 @@ void vtkCatadioptricCamera::WriteToFieldData(vtkFieldData* fd)
     static_cast<double>(this->ImageHeight) };
   AddArray(fd, kIntrinsicsName, intr, 7);
   AddArray(fd, kDistortionName, this->Distortion, 5);
-  const double mirror[4] = { this->MirrorCenter[0], this->MirrorCenter[1], this->MirrorCenter[2],
-    this->MirrorRadius };
-  AddArray(fd, kMirrorName, mirror, 4);
+  vtkNew<vtkStringArray> type;
+  type->SetName(kMirrorTypeName);
+  type->InsertNextValue(this->MirrorType);
+  fd->RemoveArray(kMirrorTypeName);
+  fd->AddArray(type);
+  AddArray(fd, kMirrorParametersName, this->MirrorParameters.data(),
+    static_cast<int>(this->MirrorParameters.size()));
   double pose[16];
   this->GetWorldToCameraElements(pose);
   AddArray(fd, kPoseName, pose, 16);
@@ -299,9 +413,16 @@ void vtkCatadioptricCamera::WriteToFieldData(vtkFieldData* fd)
 
 bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
 {
-  double intr[7], dist[5], mirror[4], pose[16];
-  if (!GetArray(fd, kIntrinsicsName, intr, 7) || !GetArray(fd, kDistortionName, dist, 5) ||
-    !GetArray(fd, kMirrorName, mirror, 4) || !GetArray(fd, kPoseName, pose, 16))
+  double intr[7], dist[5], pose[16];
+  vtkStringArray* typeArray =
+    fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(kMirrorTypeName)) : nullptr;
+  const catar::MirrorType* type = typeArray && typeArray->GetNumberOfValues() == 1
+    ? catar::FindMirrorType(typeArray->GetValue(0))
+    : nullptr;
+  std::vector<double> mirror(type ? static_cast<std::size_t>(type->ParameterCount()) : 0);
+  if (!GetArray(fd, kIntrinsicsName, intr, 7) || !GetArray(fd, kDistortionName, dist, 5) || !type ||
+    !GetArray(fd, kMirrorParametersName, mirror.data(), static_cast<int>(mirror.size())) ||
+    !GetArray(fd, kPoseName, pose, 16))
   {
     this->LastError = "field data holds no camera (run vtkCatadioptricProjection first)";
     return false;
@@ -320,8 +441,8 @@ bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
   this->ImageWidth = static_cast<int>(intr[5]);
   this->ImageHeight = static_cast<int>(intr[6]);
   std::copy(dist, dist + 5, this->Distortion);
-  std::copy(mirror, mirror + 3, this->MirrorCenter);
-  this->MirrorRadius = mirror[3];
+  this->MirrorType = type->name;
+  this->MirrorParameters = mirror;
   this->WorldToCamera->DeepCopy(pose);
   this->Modified();
   return this->IsValid();
@@ -349,9 +470,13 @@ void vtkCatadioptricCamera::PrintSelf(ostream& os, vtkIndent indent)
     os << " " << d;
   }
   os << "\n";
-  os << indent << "MirrorCenter: " << this->MirrorCenter[0] << ", " << this->MirrorCenter[1] << ", "
-     << this->MirrorCenter[2] << "\n";
-  os << indent << "MirrorRadius: " << this->MirrorRadius << "\n";
+  os << indent << "MirrorType: " << this->MirrorType << "\n";
+  os << indent << "MirrorParameters:";
+  for (double v : this->MirrorParameters)
+  {
+    os << " " << v;
+  }
+  os << "\n";
   os << indent << "WorldToCamera:\n";
   this->WorldToCamera->PrintSelf(os, indent.GetNextIndent());
 }

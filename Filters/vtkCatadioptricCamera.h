@@ -1,11 +1,12 @@
 /**
  * @class   vtkCatadioptricCamera
- * @brief   a non-central catadioptric camera: a perspective camera looking at a spherical mirror
+ * @brief   a non-central catadioptric camera: a perspective camera looking at a curved mirror
  *
  * The camera holds the pinhole intrinsics (focal lengths, principal point, skew, image size),
- * OpenCV's lens distortion (k1, k2, p1, p2, k3), the spherical mirror (centre in the camera frame,
- * radius) and the world-to-camera pose. Conventions follow OpenCV: camera frame x right, y down,
- * z forward; pixel (0,0) is the centre of the top-left pixel. Lengths are in any one unit.
+ * OpenCV's lens distortion (k1, k2, p1, p2, k3), the mirror (a type and its parameters, in the
+ * camera frame; see GetMirrorTypes()) and the world-to-camera pose. Conventions follow OpenCV:
+ * camera frame x right, y down, z forward; pixel (0,0) is the centre of the top-left pixel. Lengths
+ * are in any one unit.
  *
  * It loads and saves calibration files (YAML or JSON, see README "Calibration files"), projects
  * world points through the mirror, back-projects pixels to reflected rays, and writes itself to /
@@ -21,6 +22,7 @@
 #include "vtkSmartPointer.h" // for member
 
 #include <string> // for member
+#include <vector> // for member
 
 class vtkFieldData;
 class vtkInformationIntegerVectorKey;
@@ -43,8 +45,8 @@ public:
   {
     VALID = 0,            ///< reflection found, pixel inside the image
     OUTSIDE_IMAGE = 1,    ///< reflection found, pixel outside the image
-    INSIDE_MIRROR = 2,    ///< the point is inside the mirror sphere
-    HIDDEN_BY_MIRROR = 3, ///< the sphere hides the point from all the mirror the camera sees
+    INSIDE_MIRROR = 2,    ///< the point is inside the mirror's solid
+    HIDDEN_BY_MIRROR = 3, ///< the mirror hides the point from all of it the camera sees
     NO_REFLECTION = 4,    ///< grazing, behind the camera, or a pixel whose ray misses the mirror
     INVALID_INPUT = 5     ///< NaN/Inf input or an invalid camera
   };
@@ -92,11 +94,32 @@ public:
   ///@}
 
   ///@{
-  /// Spherical mirror: centre in the camera frame, and radius.
-  vtkSetVector3Macro(MirrorCenter, double);
-  vtkGetVector3Macro(MirrorCenter, double);
-  vtkSetMacro(MirrorRadius, double);
-  vtkGetMacro(MirrorRadius, double);
+  /// The mirror's type: one of GetMirrorTypes() (the first is the default). Setting another type
+  /// resets the parameters to that type's defaults; an unknown type is an error (vtkErrorMacro,
+  /// GetLastError, false) and changes nothing.
+  bool SetMirrorType(const char* type);
+  const char* GetMirrorType() { return this->MirrorType.c_str(); }
+  /// The mirror types there are, and the keys of a type's parameters in order (README,
+  /// "Calibration files", says what each means).
+  static std::vector<std::string> GetMirrorTypes();
+  static std::vector<std::string> GetMirrorParameterKeys(const char* type);
+  ///@}
+
+  ///@{
+  /// One of the mirror's parameters by its key (as in calibration files), camera frame, e.g.
+  /// SetMirrorParameter("radius", 0.05). A key the type does not have, or the wrong count of
+  /// numbers, is an error (vtkErrorMacro, GetLastError, false) and changes nothing; Get returns an
+  /// empty vector for an unknown key.
+  bool SetMirrorParameter(const char* key, const std::vector<double>& values);
+  bool SetMirrorParameter(const char* key, double value);
+  std::vector<double> GetMirrorParameter(const char* key);
+  ///@}
+
+  ///@{
+  /// All the mirror's numbers, in its type's order (the keys' numbers one after the other).
+  /// A wrong count is an error, as above.
+  bool SetMirrorParameters(const std::vector<double>& values);
+  std::vector<double> GetMirrorParameters() { return this->MirrorParameters; }
   ///@}
 
   ///@{
@@ -136,8 +159,8 @@ public:
 
   ///@{
   /// Store the camera in / restore it from field data (arrays CameraIntrinsics,
-  /// CameraDistortion, MirrorSphere, WorldToCamera). ReadFromFieldData returns false if any is
-  /// missing or malformed.
+  /// CameraDistortion, MirrorType (a string), MirrorParameters, WorldToCamera). ReadFromFieldData
+  /// returns false if any is missing or malformed.
   void WriteToFieldData(vtkFieldData* fieldData);
   bool ReadFromFieldData(vtkFieldData* fieldData);
   ///@}
@@ -166,8 +189,8 @@ protected:
   double PrincipalPoint[2] = { 663.5, 523.5 };
   double Skew = 0.0;
   double Distortion[5] = { 0, 0, 0, 0, 0 };
-  double MirrorCenter[3] = { 0.0, 0.0, 0.14 };
-  double MirrorRadius = 0.05;
+  std::string MirrorType;               // set by the constructor: the demo rig's mirror
+  std::vector<double> MirrorParameters; // its numbers
   vtkSmartPointer<vtkMatrix4x4> WorldToCamera;
   std::string LastError;
 

@@ -1,7 +1,7 @@
 #include "vtkCatadioptricProjection.h"
 
 #include "CameraModel.h"
-#include "SphereProjection.h"
+#include "Projector.h"
 
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
@@ -51,7 +51,7 @@ constexpr vtkIdType kPrefetchCells = 8;
 // Projects the polygons' centroids and decides cell visibility; runs over a range of polygons.
 struct CellWorker
 {
-  const catar::SphereProjector* Projector;
+  const catar::Projector* Projector;
   const VertexRecord* Vertices;
   double* Depth;
   double* CentroidMirror;
@@ -67,7 +67,7 @@ struct CellWorker
   template<typename IdT>
   void operator()(const IdT* off, const IdT* conn, vtkIdType begin, vtkIdType end) const
   {
-    Batch batch;
+    Batch batch(this->Projector->GetBatchSize());
     for (vtkIdType c = begin; c < end; ++c)
     {
       if (c + kPrefetchCells < end)
@@ -136,7 +136,7 @@ struct CellWorker
       }
       // The centroid reflects next to its vertices: Newton from the mean of their reflection
       // points converges in one or two steps, to the same answer as either solver. Centroids are
-      // solved a batch at a time (side by side, see SphereProjector::ProjectWorldNear).
+      // solved a batch at a time (side by side, see Projector::ProjectWorldNear).
       batch.Add(out, centroid, guess, normal, xmin, xmax, ymin, ymax);
       if (batch.Full())
       {
@@ -149,13 +149,18 @@ struct CellWorker
   // Cells whose centroid is still to be projected.
   struct Batch
   {
-    static constexpr int W = catar::detail::MirrorFrame::kLanes;
+    static constexpr int W = catar::Mirror::kMaxBatchSize;
+    explicit Batch(int size)
+      : size(size)
+    {
+    }
+    int size; // the projector's batch size
     int n = 0;
     vtkIdType out[W];
     catar::Vec3 centroid[W], guess[W], normal[W];
     double bounds[W][4];
     catar::ProjectedPoint q[W];
-    bool Full() const { return this->n == W; }
+    bool Full() const { return this->n == this->size; }
     void Add(vtkIdType o, const catar::Vec3& c, const catar::Vec3& g, const catar::Vec3& nrm,
       double xmin, double xmax, double ymin, double ymax)
     {
@@ -261,7 +266,7 @@ int vtkCatadioptricProjection::RequestData(
     vtkErrorMacro("Invalid camera: " << camera->GetLastError());
     return 0;
   }
-  const catar::SphereProjector projector(camera->GetModel());
+  const catar::Projector projector(camera->GetModel());
   const catar::SolverType solver =
     this->Solver == ITERATIVE ? catar::SolverType::Iterative : catar::SolverType::Quartic;
 
@@ -297,7 +302,6 @@ int vtkCatadioptricProjection::RequestData(
     double* pl = path->GetPointer(0);
     unsigned char* st = status->GetPointer(0);
     unsigned char* vi = pvis->GetPointer(0);
-    const bool coherent = solver == catar::SolverType::Iterative;
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
       auto store = [&](vtkIdType i, const catar::Vec3& p, const catar::ProjectedPoint& q) {
         px[2 * i] = q.pixel.x();
@@ -317,43 +321,7 @@ int vtkCatadioptricProjection::RequestData(
         }
         r.visible = vi[i];
       };
-      // ITERATIVE starts each point's Newton at the reflection of a point just before it (points
-      // that follow each other in a mesh are mostly neighbours): the first W points of a range
-      // one by one, each from the previous one's; then W at a time, solved side by side (see
-      // SphereProjector::ProjectWorldNear), each from the point W places before it. Points
-      // without such a start use the far-field guess.
-      constexpr vtkIdType W = catar::detail::MirrorFrame::kLanes;
-      const vtkIdType serialEnd = coherent ? std::min(end, begin + W) : end;
-      catar::Vec3 previous = catar::Vec3::Zero();
-      bool havePrevious = false;
-      for (vtkIdType i = begin; i < serialEnd; ++i)
-      {
-        const catar::Vec3 p = points(i);
-        const catar::ProjectedPoint q = coherent && havePrevious
-          ? projector.ProjectWorldNear(p, previous)
-          : projector.ProjectWorld(p, solver);
-        havePrevious = catar::HasProjection(q.status);
-        previous = q.mirrorPoint;
-        store(i, p, q);
-      }
-      const catar::Vec3 none = catar::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
-      catar::Vec3 p[W], guess[W];
-      catar::ProjectedPoint q[W];
-      for (vtkIdType first = serialEnd; first < end; first += W)
-      {
-        const vtkIdType n = std::min(W, end - first);
-        for (vtkIdType l = 0; l < n; ++l)
-        {
-          const vtkIdType from = first + l - W;
-          p[l] = points(first + l);
-          guess[l] = vi[from] ? catar::Vec3(mp + 3 * from) : none;
-        }
-        projector.ProjectWorldNear(static_cast<std::size_t>(n), p, guess, q);
-        for (vtkIdType l = 0; l < n; ++l)
-        {
-          store(first + l, p[l], q[l]);
-        }
-      }
+      catar::ProjectRun(projector, solver, begin, end, points, store);
     });
   }
   vtkPointData* pd = output->GetPointData();

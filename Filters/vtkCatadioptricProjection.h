@@ -1,6 +1,6 @@
 /**
  * @class   vtkCatadioptricProjection
- * @brief   projects a surface mesh through a catadioptric camera's spherical mirror
+ * @brief   projects a surface mesh through a catadioptric camera's mirror
  *
  * The camera enters the pipeline here, once per frame. Points stay in world coordinates; the
  * filter adds

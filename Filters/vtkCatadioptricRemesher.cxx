@@ -60,7 +60,7 @@ bool StopRequested(void* clientData)
 // too. Kept between 1e-4 and 2e-2 of the bounding-box diagonal; 0 (the core's default, 1e-3 of
 // the diagonal) when no point is seen.
 double GeometricErrorForTolerance(
-  const catar::mesh::TriangleMesh& mesh, const catar::SphereProjector& projector, double tolerance)
+  const catar::mesh::TriangleMesh& mesh, const catar::Projector& projector, double tolerance)
 {
   if (mesh.points.empty())
   {
@@ -170,7 +170,7 @@ int vtkCatadioptricRemesher::RequestData(
     {
       return 0;
     }
-    auto projector = std::make_shared<catar::SphereProjector>(camera->GetModel());
+    auto projector = std::make_shared<catar::Projector>(camera->GetModel());
     if (!projector->IsValid())
     {
       vtkErrorMacro("Invalid camera: " << projector->GetError());

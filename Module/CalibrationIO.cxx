@@ -2,6 +2,7 @@
 
 #include "ConfigReader.h"
 #include "FileOutput.h"
+#include "Mirror.h"
 
 #include <opencv2/core.hpp>
 
@@ -13,6 +14,46 @@ namespace catar
 {
 namespace fs
 {
+namespace
+{
+// The mirror map: its type (the default type when absent) and that type's keys, each a number or
+// a list of numbers (MirrorTypes() says which).
+MirrorDescription ReadMirror(const Node& mirror)
+{
+  const MirrorType& fallback = MirrorTypes().front();
+  if (!mirror.isMap())
+  {
+    std::string keys = "type";
+    for (const MirrorParameter& p : fallback.parameters)
+    {
+      keys += ", " + p.key;
+    }
+    throw ParseError("missing map 'mirror' {" + keys + "}");
+  }
+  const std::string typeName = String(mirror, "type", fallback.name);
+  const MirrorType* type = FindMirrorType(typeName);
+  if (!type)
+  {
+    throw ParseError(
+      "mirror type '" + typeName + "' is not supported (known: " + MirrorTypeNames() + ")");
+  }
+  MirrorDescription d(type->name, {});
+  for (const MirrorParameter& p : type->parameters)
+  {
+    if (p.count == 1)
+    {
+      d.parameters.push_back(Number(mirror, p.key));
+    }
+    else
+    {
+      const std::vector<double> v = Numbers(mirror[p.key], "mirror." + p.key, p.count);
+      d.parameters.insert(d.parameters.end(), v.begin(), v.end());
+    }
+  }
+  return d;
+}
+} // namespace
+
 void ReadCalibration(const Node& node, CameraModel& m)
 {
   if (!node.isMap())
@@ -56,19 +97,7 @@ void ReadCalibration(const Node& node, CameraModel& m)
     d.resize(5, 0.0);
     model.distortion = Distortion{ d[0], d[1], d[2], d[3], d[4] };
   }
-  const Node mirror = node["mirror"];
-  if (!mirror.isMap())
-  {
-    throw ParseError("missing map 'mirror' {type, center, radius}");
-  }
-  const std::string type = String(mirror, "type", "sphere");
-  if (type != "sphere")
-  {
-    throw ParseError("mirror type '" + type + "' is not supported (only 'sphere')");
-  }
-  const std::vector<double> c = Numbers(mirror["center"], "mirror.center", 3);
-  model.mirror.center = Vec3(c[0], c[1], c[2]);
-  model.mirror.radius = Number(mirror, "radius");
+  model.mirror = ReadMirror(node["mirror"]);
   const Node pose = node["world_to_camera"];
   if (!pose.empty() && !pose.isNone())
   {
@@ -118,11 +147,26 @@ void WriteStorage(cv::FileStorage& out, const CameraModel& m)
   out << "distortion_coefficients" << D;
   out << "mirror"
       << "{";
-  out << "type"
-      << "sphere";
-  out << "center"
-      << "[:" << m.mirror.center.x() << m.mirror.center.y() << m.mirror.center.z() << "]";
-  out << "radius" << m.mirror.radius;
+  out << "type" << m.mirror.type;
+  if (const MirrorType* type = FindMirrorType(m.mirror.type))
+  {
+    std::size_t i = 0;
+    for (const MirrorParameter& p : type->parameters)
+    {
+      out << p.key;
+      if (p.count == 1)
+      {
+        out << m.mirror.parameters.at(i++);
+        continue;
+      }
+      out << "[:";
+      for (int k = 0; k < p.count; ++k)
+      {
+        out << m.mirror.parameters.at(i++);
+      }
+      out << "]";
+    }
+  }
   out << "}";
   cv::Mat P(4, 4, CV_64F);
   Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(P.ptr<double>()) = m.worldToCamera;

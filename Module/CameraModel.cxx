@@ -1,5 +1,7 @@
 #include "CameraModel.h"
 
+#include "Mirror.h"
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -55,18 +57,9 @@ std::string CameraModel::Validate() const
   {
     err << "distortion coefficients contain NaN or Inf";
   }
-  else if (!this->mirror.center.allFinite() || !std::isfinite(this->mirror.radius))
+  else if (const std::string mirrorError = ValidateMirror(this->mirror); !mirrorError.empty())
   {
-    err << "mirror contains NaN or Inf";
-  }
-  else if (!(this->mirror.radius > 0.0))
-  {
-    err << "mirror radius must be positive (" << this->mirror.radius << ")";
-  }
-  else if (this->mirror.center.norm() <= this->mirror.radius * (1.0 + 1e-9))
-  {
-    err << "the camera centre is inside the mirror sphere (|centre|=" << this->mirror.center.norm()
-        << ", radius=" << this->mirror.radius << ")";
+    err << mirrorError;
   }
   else if (!this->worldToCamera.allFinite())
   {

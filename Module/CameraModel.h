@@ -1,6 +1,6 @@
 // CatadioptricAR Core: the non-central catadioptric camera model.
 //
-// A perspective camera (intrinsics K, OpenCV lens distortion) looks at a spherical mirror.
+// A perspective camera (intrinsics K, OpenCV lens distortion) looks at a mirror (Mirror.h).
 // Conventions (see README "Conventions"):
 //  - camera frame as OpenCV: x right, y down, z forward; the camera centre is the origin;
 //  - pixel (0,0) is the centre of the top-left pixel; K maps camera-frame rays to pixels exactly
@@ -8,6 +8,8 @@
 //  - the pose is world-to-camera: p_camera = R p_world + t, stored as a 4x4 matrix.
 #ifndef catarCameraModel_h
 #define catarCameraModel_h
+
+#include "MirrorDescription.h"
 
 #include <Eigen/Core>
 
@@ -50,13 +52,6 @@ struct Distortion
   bool IsZero() const { return k1 == 0 && k2 == 0 && p1 == 0 && p2 == 0 && k3 == 0; }
 };
 
-/// A spherical mirror, given in the camera frame.
-struct SphereMirror
-{
-  Vec3 center = Vec3(0.0, 0.0, 0.2);
-  double radius = 0.05;
-};
-
 /// What became of a point (forward projection) or a pixel (back projection).
 /// Every result carries one; coordinates of a result that is not Valid/OutsideImage are zero,
 /// never NaN.
@@ -64,8 +59,8 @@ enum class ProjectionStatus : std::uint8_t
 {
   Valid = 0,          ///< reflection found, pixel inside the image
   OutsideImage = 1,   ///< reflection found, but the pixel lies outside the image
-  InsideMirror = 2,   ///< the point is inside (or on) the mirror sphere
-  HiddenByMirror = 3, ///< the sphere hides the point from every mirror point the camera sees
+  InsideMirror = 2,   ///< the point is inside (or on) the mirror's solid
+  HiddenByMirror = 3, ///< the mirror hides the point from every mirror point the camera sees
   NoReflection = 4,   ///< no usable reflection: grazing/degenerate, behind the camera, or a pixel
                       ///< whose ray misses the mirror
   InvalidInput = 5    ///< NaN/Inf input, or an invalid camera
@@ -85,11 +80,11 @@ struct CameraModel
 {
   Intrinsics intrinsics;
   Distortion distortion;
-  SphereMirror mirror;
+  MirrorDescription mirror; ///< the mirror, camera frame (default: Mirror.h's default type)
   Mat4 worldToCamera = Mat4::Identity();
 
   /// Empty when the model is usable; otherwise a sentence that says what is wrong
-  /// (non-positive focal length or radius, camera inside the mirror, non-rigid pose, NaN...).
+  /// (non-positive focal length, a mirror that ValidateMirror refuses, non-rigid pose, NaN...).
   std::string Validate() const;
 
   /// The 3x3 camera matrix K.

@@ -15,7 +15,7 @@ double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b)
   return (p - (a + t * ab)).norm();
 }
 
-double EdgeBendPixels(const SphereProjector& projector, const Vec3& aWorld, const Vec3& bWorld,
+double EdgeBendPixels(const Projector& projector, const Vec3& aWorld, const Vec3& bWorld,
   int samples, SolverType solver)
 {
   const ProjectedPoint pa = projector.ProjectWorld(aWorld, solver);
@@ -44,7 +44,7 @@ double EdgeBendPixels(const SphereProjector& projector, const Vec3& aWorld, cons
 }
 
 double ImageScale(
-  const SphereProjector& projector, const Vec3& pointWorld, double step, SolverType solver)
+  const Projector& projector, const Vec3& pointWorld, double step, SolverType solver)
 {
   if (!(step > 0.0) || !std::isfinite(step))
   {

@@ -7,7 +7,7 @@
 #ifndef catarEdgeBend_h
 #define catarEdgeBend_h
 
-#include "SphereProjection.h"
+#include "Projector.h"
 
 namespace catar
 {
@@ -16,13 +16,13 @@ namespace catar
 /// exact images of a + t (b - a), t = k / (samples + 1), k = 1..samples, to the segment between
 /// the images of a and b. Returns -1 when the edge is not seen: an end or a sample has no
 /// projection (see HasProjection), or neither end lies inside the image. Never NaN.
-double EdgeBendPixels(const SphereProjector& projector, const Vec3& aWorld, const Vec3& bWorld,
+double EdgeBendPixels(const Projector& projector, const Vec3& aWorld, const Vec3& bWorld,
   int samples = 1, SolverType solver = SolverType::Quartic);
 
 /// Image scale at a world point, in pixels per world unit: the largest image displacement of
 /// the point moved by `step` along each world axis, divided by `step`. Returns -1 when the point
 /// is not seen (no valid projection, or a moved point has none). Never NaN.
-double ImageScale(const SphereProjector& projector, const Vec3& pointWorld, double step,
+double ImageScale(const Projector& projector, const Vec3& pointWorld, double step,
   SolverType solver = SolverType::Quartic);
 
 /// Distance from point p to the segment a-b (2D).

@@ -1,7 +1,7 @@
 #include "Environment.h"
 
+#include "Projector.h"
 #include "SafeCast.h"
-#include "SphereProjection.h"
 
 #include <algorithm>
 #include <cmath>
@@ -134,8 +134,8 @@ inline std::uint8_t ToByte(double v)
 // positions of each pixel of rows [y0, y1), averages color(pixel, ray) over them and writes RGBA8
 // (alpha 255).
 template<class SampleColor>
-void RenderRows(const SphereProjector& projector, int samples, const ImageView& target, int y0,
-  int y1, const SampleColor& color)
+void RenderRows(const Projector& projector, int samples, const ImageView& target, int y0, int y1,
+  const SampleColor& color)
 {
   samples = std::max(1, std::min(8, samples));
   const double inv = 1.0 / (samples * samples);
@@ -164,8 +164,8 @@ void RenderRows(const SphereProjector& projector, int samples, const ImageView& 
 }
 } // namespace
 
-void RenderEnvironmentRows(const SphereProjector& projector, const RoomEnvironment& room,
-  int samples, const ImageView& target, int y0, int y1)
+void RenderEnvironmentRows(const Projector& projector, const RoomEnvironment& room, int samples,
+  const ImageView& target, int y0, int y1)
 {
   const CameraModel& model = projector.GetModel();
   const Vec3 eye = model.CameraToWorld(Vec3::Zero());
@@ -311,7 +311,7 @@ Vec3 PlacedPanoramaColor(
   return PanoramaColor(panorama, Vec3(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z()));
 }
 
-void RenderPanoramaRows(const SphereProjector& projector, const EquirectangularPanorama& panorama,
+void RenderPanoramaRows(const Projector& projector, const EquirectangularPanorama& panorama,
   const PanoramaPlacement& placement, int samples, const ImageView& target, int y0, int y1)
 {
   RenderRows(

@@ -33,7 +33,7 @@
 
 namespace catar
 {
-class SphereProjector;
+class Projector;
 
 /// A box-shaped room, world coordinates, metres.
 struct RoomEnvironment
@@ -50,8 +50,8 @@ Vec3 RoomColor(const RoomEnvironment& room, const Vec3& origin, const Vec3& dire
 /// Fills rows [y0, y1) of `target` (RGBA8, alpha 255) with the camera frame of `room` seen by
 /// the camera of `projector`, with samples x samples supersampling per pixel. Rows are
 /// independent, so callers may split the image between threads.
-void RenderEnvironmentRows(const SphereProjector& projector, const RoomEnvironment& room,
-  int samples, const ImageView& target, int y0, int y1);
+void RenderEnvironmentRows(const Projector& projector, const RoomEnvironment& room, int samples,
+  const ImageView& target, int y0, int y1);
 
 /// An equirectangular (latitude-longitude) panorama: width x height pixels of `channels` bytes
 /// (3: RGB8, 4: RGBA8; alpha is kept but not used), rows from the top (zenith) down, no padding.
@@ -119,7 +119,7 @@ Vec3 PlacedPanoramaColor(const EquirectangularPanorama& panorama,
 /// infinity: sub-samples whose ray hits the mirror take PlacedPanoramaColor of the reflected
 /// direction (a perfect mirror); the others take placement.backdrop. samples x samples
 /// supersampling per pixel (1 to 8), as RenderEnvironmentRows. Rows are independent.
-void RenderPanoramaRows(const SphereProjector& projector, const EquirectangularPanorama& panorama,
+void RenderPanoramaRows(const Projector& projector, const EquirectangularPanorama& panorama,
   const PanoramaPlacement& placement, int samples, const ImageView& target, int y0, int y1);
 } // namespace catar
 

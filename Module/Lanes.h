@@ -1,5 +1,5 @@
 // CatadioptricAR Core (private): two doubles side by side, the lanes of the solvers that work on
-// several points at once (MirrorFrame::ReflectNear).
+// several points at once (the Mirror::ReflectNear implementations).
 #ifndef catarLanes_h
 #define catarLanes_h
 

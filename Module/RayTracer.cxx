@@ -156,7 +156,7 @@ bool RayTracer::SetScene(const std::vector<TraceMesh>& meshes,
   return true;
 }
 
-bool RayTracer::PrepareRays(const SphereProjector& projector, int samples)
+bool RayTracer::PrepareRays(const Projector& projector, int samples)
 {
   this->Error.clear();
   this->Rays.clear();

@@ -1,7 +1,7 @@
 // CatadioptricAR Core: the exact reference renderer.
 //
 // Every pixel (or N x N samples of it) is back-projected through the camera, reflected off the
-// spherical mirror, and the reflected ray is intersected with the scene's triangles (Embree). The
+// mirror, and the reflected ray is intersected with the scene's triangles (Embree). The
 // hit point is shaded with the same equation as the fast path (Lighting.h) but exactly where the
 // ray lands: the viewer is the pixel's own mirror point, the normal is the face normal (Flat) or
 // the interpolated vertex normal (Smooth), base colours and texture coordinates are interpolated
@@ -16,9 +16,9 @@
 #define catarRayTracer_h
 
 #include "Lighting.h"
+#include "Projector.h"
 #include "Rasterizer.h" // ImageView, TextureView
 #include "RayScene.h"
-#include "SphereProjection.h"
 
 #include <array>
 #include <cstdint>
@@ -87,7 +87,7 @@ public:
   /// Back-projects the N x N samples (N = samples, 1..8) of every pixel of `projector`'s image
   /// and keeps the reflected rays (single precision, as Embree traces). False with GetError()
   /// for an invalid camera.
-  bool PrepareRays(const SphereProjector& projector, int samples);
+  bool PrepareRays(const Projector& projector, int samples);
 
   /// Renders rows [y0, y1) of `target`, which holds the camera frame (RGBA8, the camera's image
   /// size): where the reflected ray of a sample hits the scene, its shaded colour is composited

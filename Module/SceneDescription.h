@@ -8,7 +8,7 @@
 #define catarSceneDescription_h
 
 #include "CameraModel.h"
-#include "SphereProjection.h"
+#include "Projector.h"
 
 #include <string>
 #include <vector>

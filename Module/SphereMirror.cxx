@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace catar
 {
@@ -168,8 +169,9 @@ bool QuarticReflectionAngle(double a, double bx, double by, double lo, double hi
   return true;
 }
 
-MirrorFrame::MirrorFrame(const Vec3& centre, double radius)
-  : Centre(centre)
+SphereSurface::SphereSurface(const Vec3& centre, double radius)
+  : Description(SphereMirror{ centre, radius })
+  , Centre(centre)
   , Radius(radius)
 {
   if (!centre.allFinite() || !std::isfinite(radius) || !(radius > 0.0))
@@ -190,7 +192,7 @@ MirrorFrame::MirrorFrame(const Vec3& centre, double radius)
   this->Valid = true;
 }
 
-ProjectionStatus MirrorFrame::Reflect(
+ProjectionStatus SphereSurface::Reflect(
   const Vec3& point, SolverType solver, Vec3& mirrorPoint, const Vec3* guess) const
 {
   if (guess)
@@ -293,11 +295,11 @@ ProjectionStatus MirrorFrame::Reflect(
 namespace
 {
 using namespace catar::lanes;
-constexpr int kPairs = MirrorFrame::kLanes / kW;
-static_assert(MirrorFrame::kLanes % kW == 0, "lanes come in pairs");
+constexpr int kPairs = SphereSurface::kLanes / kW;
+static_assert(SphereSurface::kLanes % kW == 0, "lanes come in pairs");
 } // namespace
 
-void MirrorFrame::ReflectNear(
+void SphereSurface::ReflectNear(
   int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints, unsigned char* settled) const
 {
   // Plain Newton from the guess, accepted when it converges within a few steps to a point that
@@ -418,6 +420,85 @@ void MirrorFrame::ReflectNear(
 ProjectionStatus SphereReflectionPoint(
   const Vec3& centre, double radius, const Vec3& point, SolverType solver, Vec3& mirrorPoint)
 {
-  return detail::MirrorFrame(centre, radius).Reflect(point, solver, mirrorPoint);
+  return detail::SphereSurface(centre, radius).Reflect(point, solver, mirrorPoint);
+}
+
+bool detail::SphereSurface::Intersect(const Vec3& d, Vec3& point, Vec3& normal) const
+{
+  const Vec3& c = this->Centre;
+  const double radius = this->Radius;
+  const double dc = d.dot(c);
+  const double c2r2 = c.squaredNorm() - radius * radius;
+  // disc = R^2 - (distance from the centre to the ray)^2, without the cancellation of
+  // (d.c)^2 - |c|^2 + R^2, which would cost digits at every pixel.
+  const double lateral = c.cross(d).norm();
+  const double disc = (radius - lateral) * (radius + lateral);
+  if (!this->Valid || !(dc > 0.0) || !(disc >= 0.0))
+  {
+    return false;
+  }
+  // Nearer intersection, in the cancellation-free form s = (|c|^2 - R^2) / (d.c + sqrt(disc)).
+  const double s = c2r2 / (dc + std::sqrt(disc));
+  point = s * d;
+  normal = (point - c) / radius;
+  return true;
+}
+
+SphereMirror::operator MirrorDescription() const
+{
+  return MirrorDescription(
+    "sphere", { this->center.x(), this->center.y(), this->center.z(), this->radius });
+}
+
+bool SphereMirror::From(const MirrorDescription& description, SphereMirror& sphere)
+{
+  if (description.type != "sphere" || description.parameters.size() != 4)
+  {
+    return false;
+  }
+  const std::vector<double>& p = description.parameters;
+  sphere.center = Vec3(p[0], p[1], p[2]);
+  sphere.radius = p[3];
+  return true;
+}
+
+namespace
+{
+std::string ValidateSphere(const std::vector<double>& p)
+{
+  const SphereMirror s{ Vec3(p[0], p[1], p[2]), p[3] };
+  std::ostringstream err;
+  if (!(s.radius > 0.0))
+  {
+    err << "mirror radius must be positive (" << s.radius << ")";
+  }
+  else if (s.center.norm() <= s.radius * (1.0 + 1e-9))
+  {
+    err << "the camera centre is inside the mirror sphere (|centre|=" << s.center.norm()
+        << ", radius=" << s.radius << ")";
+  }
+  return err.str();
+}
+
+std::shared_ptr<const Mirror> MakeSphere(const MirrorDescription& description)
+{
+  SphereMirror s;
+  SphereMirror::From(description, s);
+  return std::make_shared<detail::SphereSurface>(s.center, s.radius);
+}
+} // namespace
+
+MirrorType SphereMirrorType()
+{
+  MirrorType t;
+  t.name = "sphere";
+  t.help = "a spherical mirror (closed-form reflection)";
+  t.parameters = { { "center", 3, "the sphere's centre, camera frame" },
+    { "radius", 1, "the sphere's radius" } };
+  const SphereMirror defaults;
+  t.defaults = static_cast<MirrorDescription>(defaults).parameters;
+  t.validate = &ValidateSphere;
+  t.make = &MakeSphere;
+  return t;
 }
 } // namespace catar

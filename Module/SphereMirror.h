@@ -1,5 +1,6 @@
-// CatadioptricAR Core: the reflection point on a spherical mirror (the sphere's own geometry;
-// SphereProjection.h adds the camera: pixels, world frame, back projection).
+// CatadioptricAR Core: the spherical mirror, one implementation of Mirror.h's interface: its
+// description (centre, radius), the reflection point and the first point a camera ray meets
+// (Projector.h adds the camera: pixels, world frame, back projection).
 //
 // Forward projection: given a 3D point P (camera frame), find the mirror point r on the sphere such
 // that the ray from the camera centre to r reflects (angle of incidence = angle of reflection) and
@@ -22,11 +23,26 @@
 #ifndef catarSphereMirror_h
 #define catarSphereMirror_h
 
-#include "CameraModel.h"
-#include "Projection.h"
+#include "Mirror.h"
 
 namespace catar
 {
+/// A spherical mirror, given in the camera frame: the description of type "sphere" (numbers:
+/// center x, y, z, radius).
+struct SphereMirror
+{
+  Vec3 center = Vec3(0.0, 0.0, 0.2);
+  double radius = 0.05;
+
+  /// As a mirror description, e.g. for CameraModel::mirror.
+  operator MirrorDescription() const;
+  /// The sphere a description gives; false when it is not a sphere's.
+  static bool From(const MirrorDescription& description, SphereMirror& sphere);
+};
+
+/// The sphere's entry in the catalogue of mirror types (MirrorTypes.cxx).
+MirrorType SphereMirrorType();
+
 /// Reflection point only (camera at the origin, sphere centre/radius in the camera frame).
 /// Returns Valid (and sets mirrorPoint) when a reflection exists; otherwise InsideMirror,
 /// HiddenByMirror, NoReflection or InvalidInput. Never produces NaN.
@@ -35,21 +51,25 @@ ProjectionStatus SphereReflectionPoint(
 
 namespace detail
 {
-/// The mirror in the planar problem's units (centre at the origin, unit radius), precomputed
-/// once per camera: the reflection point of a camera-frame point without inverse trigonometric
-/// functions (the bracket is kept in u = tan(t/2), where angles compare as their tangents).
-class MirrorFrame
+/// The sphere as a Mirror, in the planar problem's units (centre at the origin, unit radius),
+/// precomputed once per camera: the reflection point of a camera-frame point without inverse
+/// trigonometric functions (the bracket is kept in u = tan(t/2), where angles compare as their
+/// tangents).
+class SphereSurface final : public Mirror
 {
 public:
-  MirrorFrame(const Vec3& centre, double radius);
+  SphereSurface(const Vec3& centre, double radius);
+  const MirrorDescription& Describe() const override { return this->Description; }
   /// As SphereReflectionPoint (InvalidInput for every point when the mirror is invalid).
   /// guess (optional): a point near the answer, e.g. a neighbour's reflection point; Newton then
   /// starts there (in place of the solver's start) and needs one or two steps.
-  ProjectionStatus Reflect(
-    const Vec3& point, SolverType solver, Vec3& mirrorPoint, const Vec3* guess = nullptr) const;
+  ProjectionStatus Reflect(const Vec3& point, SolverType solver, Vec3& mirrorPoint,
+    const Vec3* guess = nullptr) const override;
 
   /// Points solved side by side in ReflectNear.
   static constexpr int kLanes = 8;
+  static_assert(kLanes <= kMaxBatchSize, "a batch fits the projector's");
+  int BatchSize() const override { return kLanes; }
   /// The start of Reflect(points[i], Iterative, mirrorPoints[i], &guesses[i]) for n <= kLanes
   /// points side by side (each step of the plain Newton from the guess is taken for all of them
   /// before the next, so that their arithmetic overlaps): settled[i] = 1 where that Newton settles
@@ -57,9 +77,13 @@ public:
   /// Reflect goes on (the point touches or is inside the mirror, the guess is far, the point is on
   /// the axis, ...).
   void ReflectNear(int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints,
-    unsigned char* settled) const;
+    unsigned char* settled) const override;
+
+  bool Intersect(const Vec3& direction, Vec3& point, Vec3& normal) const override;
+  Vec3 Viewpoint() const override { return this->Centre; }
 
 private:
+  MirrorDescription Description;
   Vec3 Centre;
   double Radius;
   double InvRadius = 0.0;

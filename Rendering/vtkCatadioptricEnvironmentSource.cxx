@@ -1,7 +1,7 @@
 #include "vtkCatadioptricEnvironmentSource.h"
 
 #include "Environment.h"
-#include "SphereProjection.h"
+#include "Projector.h"
 
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
@@ -127,7 +127,7 @@ int vtkCatadioptricEnvironmentSource::RequestData(
     vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
   scalars->SetName(vtkCatadioptricArrayNames::RGBA);
 
-  const catar::SphereProjector projector(camera->GetModel());
+  const catar::Projector projector(camera->GetModel());
   catar::RoomEnvironment room;
   room.minCorner = catar::Vec3(this->RoomMinimum[0], this->RoomMinimum[1], this->RoomMinimum[2]);
   room.maxCorner = catar::Vec3(this->RoomMaximum[0], this->RoomMaximum[1], this->RoomMaximum[2]);
@@ -168,9 +168,15 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
   const std::string name = this->PanoramaFileName ? this->PanoramaFileName : "";
   if (name.empty())
   {
-    // The room seen from the mirror centre.
-    const catar::CameraModel model = camera->GetModel();
-    const catar::Vec3 viewpoint = model.CameraToWorld(model.mirror.center);
+    // The room seen from the mirror's viewpoint (a sphere's centre).
+    const catar::Projector projector(camera->GetModel());
+    if (!projector.GetMirror())
+    {
+      vtkErrorMacro("Invalid camera: " << projector.GetError());
+      return false;
+    }
+    const catar::Vec3 viewpoint =
+      projector.GetModel().CameraToWorld(projector.GetMirror()->Viewpoint());
     const std::array<double, 10> key = { this->RoomMinimum[0], this->RoomMinimum[1],
       this->RoomMinimum[2], this->RoomMaximum[0], this->RoomMaximum[1], this->RoomMaximum[2],
       this->FloorTileSize, viewpoint.x(), viewpoint.y(), viewpoint.z() };

@@ -1,7 +1,7 @@
 #include "vtkCatadioptricRayTracer.h"
 
+#include "Projector.h"
 #include "RayTracer.h"
-#include "SphereProjection.h"
 
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
@@ -175,7 +175,7 @@ int vtkCatadioptricRayTracer::RequestData(
     return 0;
   }
   const catar::CameraModel model = camera->GetModel();
-  const catar::SphereProjector projector(model);
+  const catar::Projector projector(model);
   if (!projector.IsValid())
   {
     vtkErrorMacro("Invalid camera: " << projector.GetError());

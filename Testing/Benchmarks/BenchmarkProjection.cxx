@@ -2,9 +2,9 @@
 // back-projection cost per pixel, and raster cost per triangle, single-threaded. Run:
 //   build/bin/BenchmarkProjection [--benchmark_out=projection.csv --benchmark_out_format=csv]
 // The counter ns_per_item is the cost of one point / pixel / triangle.
+#include "Projector.h"
 #include "Rasterizer.h"
 #include "SceneDescription.h"
-#include "SphereProjection.h"
 
 #include <benchmark/benchmark.h>
 
@@ -20,7 +20,7 @@ std::vector<Vec3> ScenePoints(const CameraModel& model, size_t n)
 {
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const SphereProjector proj(model);
+  const Projector proj(model);
   std::vector<Vec3> pts;
   while (pts.size() < n)
   {
@@ -46,7 +46,7 @@ void BM_ForwardProjection(benchmark::State& state)
   const SolverType solver = state.range(0) == 0 ? SolverType::Quartic : SolverType::Iterative;
   state.SetLabel(solver == SolverType::Quartic ? "quartic" : "iterative");
   const CameraModel model = DemoScene().camera;
-  const SphereProjector proj(model);
+  const Projector proj(model);
   const std::vector<Vec3> pts = ScenePoints(model, 4096);
   for (auto _ : state)
   {
@@ -64,7 +64,7 @@ BENCHMARK(BM_ForwardProjection)->Arg(0)->Arg(1);
 // is the reflection point of a point `range(0)` tenths of a millimetre away.
 struct NearInput
 {
-  SphereProjector proj;
+  Projector proj;
   std::vector<Vec3> points;
   std::vector<Vec3> guesses;
 };
@@ -74,7 +74,7 @@ NearInput MakeNearInput(benchmark::State& state)
   const double offset = 1e-4 * static_cast<double>(state.range(0));
   state.SetLabel("start " + std::to_string(offset * 1e3) + " mm away");
   const CameraModel model = DemoScene().camera;
-  NearInput in{ SphereProjector(model), ScenePoints(model, 4096), {} };
+  NearInput in{ Projector(model), ScenePoints(model, 4096), {} };
   for (const Vec3& p : in.points)
   {
     in.guesses.push_back(in.proj.ProjectWorld(p + Vec3(offset, -offset, offset)).mirrorPoint);
@@ -114,7 +114,7 @@ BENCHMARK(BM_ForwardProjectionNearBatch)->Arg(10)->Arg(100);
 void BM_BackProjection(benchmark::State& state)
 {
   const CameraModel model = DemoScene().camera;
-  const SphereProjector proj(model);
+  const Projector proj(model);
   std::vector<Vec2> pixels;
   for (int y = 0; y < model.intrinsics.height; y += 16)
   {

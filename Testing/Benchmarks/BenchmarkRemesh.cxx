@@ -49,7 +49,7 @@ double Ms(Clock::time_point a, Clock::time_point b)
 using catar_benchmark::DemoCamera;
 
 // Largest edge bend (pixels) over the mesh's visible edges.
-double MaximumBend(vtkPolyData* mesh, const catar::SphereProjector& projector)
+double MaximumBend(vtkPolyData* mesh, const catar::Projector& projector)
 {
   std::set<std::pair<vtkIdType, vtkIdType>> edges;
   vtkNew<vtkIdList> ids;
@@ -141,7 +141,7 @@ int main(int argc, char* argv[])
   vtkObject::GlobalWarningDisplayOff();
   vtkNew<vtkCatadioptricCamera> camera;
   DemoCamera(camera);
-  const catar::SphereProjector projector(camera->GetModel());
+  const catar::Projector projector(camera->GetModel());
 
   std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> objects;
   objects.emplace_back("box", catar_benchmark::PaperBox());

@@ -1,7 +1,9 @@
 // Calibration files: round trips in YAML and JSON, accepted spellings, clear errors, and the lens
 // model against OpenCV's own projectPoints.
 #include "CalibrationIO.h"
-#include "SphereProjection.h"
+#include "Projector.h"
+#include "SphereMirror.h"
+#include "TestCameras.h"
 
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
@@ -13,6 +15,7 @@
 #include <string>
 
 using namespace catar;
+using catar_test::Sphere;
 
 namespace
 {
@@ -43,8 +46,8 @@ void ExpectSame(const CameraModel& a, const CameraModel& b)
   EXPECT_DOUBLE_EQ(a.distortion.k1, b.distortion.k1);
   EXPECT_DOUBLE_EQ(a.distortion.p2, b.distortion.p2);
   EXPECT_DOUBLE_EQ(a.distortion.k3, b.distortion.k3);
-  EXPECT_EQ(a.mirror.center, b.mirror.center);
-  EXPECT_DOUBLE_EQ(a.mirror.radius, b.mirror.radius);
+  EXPECT_EQ(Sphere(a.mirror).center, Sphere(b.mirror).center);
+  EXPECT_DOUBLE_EQ(Sphere(a.mirror).radius, Sphere(b.mirror).radius);
   EXPECT_EQ(a.worldToCamera, b.worldToCamera);
 }
 
@@ -88,7 +91,7 @@ TEST(CalibrationIO, PlainSequencesAndOptionalKeys)
   EXPECT_DOUBLE_EQ(m.intrinsics.cy, 239.5);
   EXPECT_TRUE(m.distortion.IsZero());
   EXPECT_EQ(m.worldToCamera, Mat4::Identity());
-  EXPECT_DOUBLE_EQ(m.mirror.center.z(), 0.3);
+  EXPECT_DOUBLE_EQ(Sphere(m.mirror).center.z(), 0.3);
 }
 
 TEST(CalibrationIO, ErrorsNameTheProblem)
@@ -178,7 +181,7 @@ TEST(CalibrationIO, ReadsWhatOpenCVWrites)
     EXPECT_DOUBLE_EQ(back.intrinsics.fx, m.intrinsics.fx);
     EXPECT_DOUBLE_EQ(back.intrinsics.skew, m.intrinsics.skew);
     EXPECT_DOUBLE_EQ(back.distortion.k3, m.distortion.k3);
-    EXPECT_DOUBLE_EQ(back.mirror.radius, 0.06);
+    EXPECT_DOUBLE_EQ(Sphere(back.mirror).radius, 0.06);
     EXPECT_NEAR(back.worldToCamera(1, 3), m.worldToCamera(1, 3), 1e-7); // as OpenCV prints floats
   }
 }
@@ -209,8 +212,8 @@ mirror:
   std::string error;
   ASSERT_TRUE(ParseText(body, m, error)) << error;
   EXPECT_DOUBLE_EQ(m.intrinsics.cx, 319.5);
-  EXPECT_DOUBLE_EQ(m.mirror.radius, 0.1);
-  EXPECT_DOUBLE_EQ(m.mirror.center.z(), 0.3);
+  EXPECT_DOUBLE_EQ(Sphere(m.mirror).radius, 0.1);
+  EXPECT_DOUBLE_EQ(Sphere(m.mirror).center.z(), 0.3);
 
   struct Case
   {

@@ -4,9 +4,18 @@
 #define catarTestCameras_h
 
 #include "CameraModel.h"
+#include "SphereMirror.h"
 
 namespace catar_test
 {
+/// The sphere a mirror description holds (the tests' cameras are spheres).
+inline catar::SphereMirror Sphere(const catar::MirrorDescription& mirror)
+{
+  catar::SphereMirror s;
+  catar::SphereMirror::From(mirror, s);
+  return s;
+}
+
 /// The demo rig (Data/calibration/demo-camera.yaml and the built-in demo scene's camera; a test
 /// checks all three agree): a 5 cm mirror 14 cm in front of the camera, which sits at world
 /// (0, -0.14, 1) looking along +y, image up = world +z; 1328 x 1048 pixels, f = 1000.

@@ -3,9 +3,9 @@
 // expected pixels follow from the documented rules, not from the projection.
 // Visibility (painter vs depth buffer) and the VisibleTriangle ids run the real projection and
 // check pixels against exact back projection through the mirror and exact ray-plane hits.
+#include "Projector.h"
 #include "Rasterizer.h"
 #include "SceneDescription.h"
-#include "SphereProjection.h"
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
@@ -415,8 +415,8 @@ vtkSmartPointer<vtkCatadioptricCamera> VisibilityCamera()
   cam->SetImageHeight(240);
   cam->SetFocalLength(600, 600);
   cam->SetPrincipalPoint(119.5, 119.5);
-  cam->SetMirrorCenter(0, 0, 0.14);
-  cam->SetMirrorRadius(0.05);
+  cam->SetMirrorParameter("center", { 0, 0, 0.14 });
+  cam->SetMirrorParameter("radius", 0.05);
   const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
   cam->SetWorldToCameraElements(identity);
   return cam;
@@ -531,8 +531,8 @@ Hit Intersect(const Facet& f, const Vec3& o, const Vec3& d, double margin)
 // when the pixel is too close to call (near a facet boundary, where the rasterised straight edges
 // differ from the true curved ones, or where the two nearest hits are closer than `tie` metres,
 // within the error of interpolating PathLength linearly in screen space).
-int ExpectedFacet(const catar::SphereProjector& projector, const std::vector<Facet>& facets, int x,
-  int y, double margin, double tie)
+int ExpectedFacet(const catar::Projector& projector, const std::vector<Facet>& facets, int x, int y,
+  double margin, double tie)
 {
   const catar::BackProjectedRay ray = projector.BackProjectWorld(catar::Vec2(x, y));
   if (!catar::HasProjection(ray.status))
@@ -582,7 +582,7 @@ struct VisibilityScore
 VisibilityScore Score(vtkImageData* img, vtkCatadioptricCamera* cam,
   const std::vector<Facet>& facets, double margin, double tie)
 {
-  const catar::SphereProjector projector(cam->GetModel());
+  const catar::Projector projector(cam->GetModel());
   VisibilityScore s;
   const int w = img->GetDimensions()[0], h = img->GetDimensions()[1];
   for (int y = 0; y < h; ++y)

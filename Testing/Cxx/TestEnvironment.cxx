@@ -2,8 +2,9 @@
 // rendered into a panorama, camera frames of a panorama seen in the mirror, and the scene keys of
 // the panorama background.
 #include "Environment.h"
+#include "Projector.h"
 #include "SceneDescription.h"
-#include "SphereProjection.h"
+#include "SphereMirror.h"
 
 #include <gtest/gtest.h>
 
@@ -64,8 +65,7 @@ CameraModel SmallCamera()
   m.intrinsics.fx = m.intrinsics.fy = 200.0;
   m.intrinsics.cx = 79.5;
   m.intrinsics.cy = 59.5;
-  m.mirror.center = Vec3(0.0, 0.0, 0.2);
-  m.mirror.radius = 0.05;
+  m.mirror = SphereMirror{ Vec3(0.0, 0.0, 0.2), 0.05 };
   m.worldToCamera << 1, 0, 0, 0, //
     0, 0, -1, 1.0,               // camera y (down) = -world z; camera at world (0, -0.2, 1)
     0, 1, 0, 0.2,                //
@@ -288,7 +288,7 @@ TEST(EnvironmentPanorama, RoomPanoramaAgreesWithRoomColor)
 
 TEST(EnvironmentPanorama, FrameReflectsThePanoramaAndShowsTheBackdrop)
 {
-  const SphereProjector projector(SmallCamera());
+  const Projector projector(SmallCamera());
   ASSERT_TRUE(projector.IsValid()) << projector.GetError();
   const int w = projector.GetModel().intrinsics.width;
   const int h = projector.GetModel().intrinsics.height;

@@ -2,7 +2,8 @@
 // PNG) seen in the mirror with the backdrop around it; the generated room panorama; missing and
 // unreadable files; a real panorama from the shared data when present; the scene key.
 #include "Environment.h"
-#include "SphereProjection.h"
+#include "Projector.h"
+#include "SphereMirror.h"
 #include "TestUtilities.h"
 
 #include "vtkCatadioptricCamera.h"
@@ -42,8 +43,7 @@ catar::CameraModel SmallModel()
   m.intrinsics.fx = m.intrinsics.fy = 200.0;
   m.intrinsics.cx = 79.5;
   m.intrinsics.cy = 59.5;
-  m.mirror.center = catar::Vec3(0.0, 0.0, 0.2);
-  m.mirror.radius = 0.05;
+  m.mirror = catar::SphereMirror{ catar::Vec3(0.0, 0.0, 0.2), 0.05 };
   m.worldToCamera << 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.2, 0, 0, 0, 1;
   return m;
 }

@@ -1,7 +1,7 @@
 // vtkCatadioptricCamera, vtkCatadioptricProjection and vtkCatadioptricPainterSort.
 #include "CalibrationIO.h"
 #include "CameraModel.h"
-#include "SphereProjection.h"
+#include "Projector.h"
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricPainterSort.h"
@@ -18,6 +18,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "TestUtilities.h"
@@ -86,6 +87,53 @@ TEST(vtkCatadioptricCamera, FieldDataAndFileRoundTrip)
   EXPECT_FALSE(back->ReadFromFieldData(empty));
 }
 
+TEST(vtkCatadioptricCamera, MirrorByTypeAndKey)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  // The default is the demo rig's mirror, the first type.
+  EXPECT_EQ(std::string(cam->GetMirrorType()), vtkCatadioptricCamera::GetMirrorTypes().front());
+  const std::vector<std::string> keys = vtkCatadioptricCamera::GetMirrorParameterKeys("sphere");
+  ASSERT_EQ(keys, (std::vector<std::string>{ "center", "radius" }));
+  EXPECT_EQ(cam->GetMirrorParameters(), (std::vector<double>{ 0.0, 0.0, 0.14, 0.05 }));
+
+  const vtkMTimeType before = cam->GetMTime();
+  ASSERT_TRUE(cam->SetMirrorParameter("center", { 0.01, 0.0, 0.2 }));
+  ASSERT_TRUE(cam->SetMirrorParameter("radius", 0.06));
+  EXPECT_GT(cam->GetMTime(), before);
+  EXPECT_EQ(cam->GetMirrorParameter("radius"), std::vector<double>{ 0.06 });
+  EXPECT_EQ(cam->GetMirrorParameters(), (std::vector<double>{ 0.01, 0.0, 0.2, 0.06 }));
+
+  // Wrong keys, counts and types are errors that change nothing.
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(cam);
+  const vtkMTimeType unchanged = cam->GetMTime();
+  EXPECT_FALSE(cam->SetMirrorParameter("centre", { 0.0, 0.0, 0.2 }));
+  EXPECT_FALSE(cam->SetMirrorParameter("center", { 0.0, 0.2 }));
+  EXPECT_FALSE(cam->SetMirrorParameters({ 1.0, 2.0 }));
+  EXPECT_FALSE(cam->SetMirrorType("blob"));
+  EXPECT_FALSE(cam->SetMirrorType(nullptr));
+  EXPECT_EQ(errors->Count, 5);
+  EXPECT_NE(std::string(cam->GetLastError()).find("unknown mirror type"), std::string::npos);
+  EXPECT_EQ(cam->GetMTime(), unchanged);
+  EXPECT_TRUE(cam->GetMirrorParameter("no such key").empty());
+  EXPECT_EQ(cam->GetMirrorParameters(), (std::vector<double>{ 0.01, 0.0, 0.2, 0.06 }));
+
+  // The model, the field data and a calibration file carry the type and the numbers.
+  EXPECT_EQ(cam->GetModel().mirror, catar::MirrorDescription("sphere", { 0.01, 0.0, 0.2, 0.06 }));
+  vtkNew<vtkFieldData> fd;
+  cam->WriteToFieldData(fd);
+  vtkNew<vtkCatadioptricCamera> back;
+  ASSERT_TRUE(back->ReadFromFieldData(fd)) << back->GetLastError();
+  EXPECT_EQ(std::string(back->GetMirrorType()), "sphere");
+  EXPECT_EQ(back->GetMirrorParameters(), cam->GetMirrorParameters());
+  // Field data naming an unknown type, or the wrong count of numbers, holds no camera.
+  vtkStringArray::SafeDownCast(fd->GetAbstractArray("MirrorType"))->SetValue(0, "blob");
+  EXPECT_FALSE(back->ReadFromFieldData(fd));
+  cam->WriteToFieldData(fd);
+  vtkDataArray::SafeDownCast(fd->GetAbstractArray("MirrorParameters"))->SetNumberOfTuples(3);
+  EXPECT_FALSE(back->ReadFromFieldData(fd));
+}
+
 TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)
 {
   vtkNew<vtkCatadioptricCamera> cam;
@@ -111,7 +159,7 @@ TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)
   vtkNew<vtkCatadioptricCamera> fromField;
   ASSERT_TRUE(fromField->ReadFromFieldData(out->GetFieldData()));
 
-  const catar::SphereProjector core(cam->GetModel());
+  const catar::Projector core(cam->GetModel());
   int visibleCount = 0;
   for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
   {
@@ -288,7 +336,7 @@ TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
   // An invalid camera (camera inside the mirror).
   vtkNew<vtkCatadioptricCamera> cam;
   catar_test::SetSmallDemoCamera(cam);
-  cam->SetMirrorCenter(0, 0, 0.01);
+  cam->SetMirrorParameter("center", { 0, 0, 0.01 });
   proj->SetCamera(cam);
   proj->Update();
   EXPECT_EQ(proj->GetOutput()->GetNumberOfPoints(), 0);

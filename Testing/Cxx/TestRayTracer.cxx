@@ -26,7 +26,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "Lighting.h"
-#include "SphereProjection.h"
+#include "Projector.h"
 #include "TestUtilities.h"
 
 #include <gtest/gtest.h>
@@ -106,7 +106,7 @@ long long VisibleTriangle(vtkImageData* image, int x, int y)
 TEST(vtkCatadioptricRayTracer, BoxFacesAndVisibleTriangles)
 {
   auto camera = DemoCamera();
-  const catar::SphereProjector projector(camera->GetModel());
+  const catar::Projector projector(camera->GetModel());
   const catar::Vec3 lo(-0.01, -0.37, 0.82), hi(0.29, -0.25, 0.91);
   vtkNew<vtkCatadioptricRayTracer> tracer;
   vtkNew<catar_test::ErrorCounter> errors;
@@ -213,7 +213,7 @@ TEST(vtkCatadioptricRayTracer, LightingAndShadowsAreExact)
 {
   auto camera = DemoCamera();
   const catar::CameraModel model = camera->GetModel();
-  const catar::SphereProjector projector(model);
+  const catar::Projector projector(model);
   const double wallY = -0.5;
   auto wall = Wall(wallY, -0.4, 0.4, 0.6, 1.4);
   // A small occluder between the light and the wall.

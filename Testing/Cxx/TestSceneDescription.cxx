@@ -10,6 +10,7 @@
 #include <fstream>
 
 using namespace catar;
+using catar_test::Sphere;
 
 namespace
 {
@@ -49,8 +50,8 @@ TEST(SceneDescription, DemoCamerasAgree)
     EXPECT_EQ(m.intrinsics.height, rig.intrinsics.height);
     EXPECT_EQ(m.K(), rig.K());
     EXPECT_TRUE(m.distortion.IsZero());
-    EXPECT_EQ(m.mirror.center, rig.mirror.center);
-    EXPECT_EQ(m.mirror.radius, rig.mirror.radius);
+    EXPECT_EQ(Sphere(m.mirror).center, Sphere(rig.mirror).center);
+    EXPECT_EQ(Sphere(m.mirror).radius, Sphere(rig.mirror).radius);
     EXPECT_EQ(m.worldToCamera, rig.worldToCamera);
   }
 }

@@ -7,7 +7,7 @@
 #include "ScreenSpaceRemeshing.h"
 
 #include "EdgeBend.h"
-#include "SphereProjection.h"
+#include "Projector.h"
 
 #include "TestCameras.h"
 #include <Eigen/Geometry>
@@ -26,6 +26,7 @@
 #include <vector>
 
 using namespace catar;
+using catar_test::Sphere;
 using namespace catar::mesh;
 
 namespace
@@ -257,7 +258,7 @@ struct MidpointBends
   std::vector<double> hiddenLengths;
 };
 
-MidpointBends MeasureMidpoints(const TriangleMesh& mesh, const SphereProjector& projector)
+MidpointBends MeasureMidpoints(const TriangleMesh& mesh, const Projector& projector)
 {
   MidpointBends bends;
   for (const auto& edge : Analyse(mesh).edges)
@@ -316,7 +317,7 @@ TriangleMesh UniformMeetingTolerance(
 
 /// Remeshes and checks what must hold for every placement; returns the result.
 ScreenSpaceResult RemeshAndCheck(const std::string& name, const TriangleMesh& input,
-  const SphereProjector& projector, const ScreenSpaceOptions& options)
+  const Projector& projector, const ScreenSpaceOptions& options)
 {
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
@@ -372,7 +373,7 @@ struct PlacementCase
 // seen in the mirror.
 TEST(ScreenSpaceRemeshing, BoxInDemoCameraMeetsTolerance)
 {
-  const SphereProjector projector(catar_test::DemoCameraModel());
+  const Projector projector(catar_test::DemoCameraModel());
   ASSERT_TRUE(projector.IsValid()) << projector.GetError();
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
@@ -429,11 +430,11 @@ TEST(ScreenSpaceRemeshing, BoxInDemoCameraMeetsTolerance)
 TEST(ScreenSpaceRemeshing, SphereBehindMirrorMeetsTolerance)
 {
   const CameraModel camera = TiltedCamera();
-  const SphereProjector projector(camera);
+  const Projector projector(camera);
   ASSERT_TRUE(projector.IsValid()) << projector.GetError();
-  const Vec3 axis = camera.mirror.center.normalized();
+  const Vec3 axis = Sphere(camera.mirror).center.normalized();
   const Vec3 centre =
-    camera.CameraToWorld(camera.mirror.center + 0.15 * axis + 0.1 * axis.unitOrthogonal());
+    camera.CameraToWorld(Sphere(camera.mirror).center + 0.15 * axis + 0.1 * axis.unitOrthogonal());
   const double radius = 0.06;
   const TriangleMesh sphere = MakeIcosphere(centre, radius, 2);
 
@@ -492,7 +493,7 @@ TEST(ScreenSpaceRemeshing, SphereBehindMirrorMeetsTolerance)
 TEST(ScreenSpaceRemeshing, RejectsBadOptionsAndInput)
 {
   const TriangleMesh box = MakeBox(Vec3(0.2, 0.15, 0.1), 0.0, Vec3(0.1, -0.3, 0.9));
-  const SphereProjector projector(catar_test::DemoCameraModel());
+  const Projector projector(catar_test::DemoCameraModel());
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
   };
@@ -572,7 +573,7 @@ TEST(ScreenSpaceRemeshing, UnseenObjectStaysCoarse)
 // and a warning says why.
 TEST(ScreenSpaceRemeshing, ReportsUnreachableTolerance)
 {
-  const SphereProjector projector(catar_test::DemoCameraModel());
+  const Projector projector(catar_test::DemoCameraModel());
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
   };
@@ -607,7 +608,7 @@ TEST(ScreenSpaceRemeshing, ReportsUnreachableTolerance)
 // An open surface keeps its boundary; point data follow; progress is reported.
 TEST(ScreenSpaceRemeshing, OpenSurfaceKeepsBoundaryAndPointData)
 {
-  const SphereProjector projector(catar_test::DemoCameraModel());
+  const Projector projector(catar_test::DemoCameraModel());
   const EdgeErrorFunction edgeError = [&projector](const Vec3& a, const Vec3& b) {
     return EdgeBendPixels(projector, a, b);
   };

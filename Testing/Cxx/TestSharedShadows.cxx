@@ -35,8 +35,8 @@ void SharedShadowsCamera(vtkCatadioptricCamera* cam)
   cam->SetImageHeight(480);
   cam->SetFocalLength(480, 480);
   cam->SetPrincipalPoint(319.5, 239.5);
-  cam->SetMirrorCenter(0, 0, 0.14);
-  cam->SetMirrorRadius(0.05);
+  cam->SetMirrorParameter("center", { 0, 0, 0.14 });
+  cam->SetMirrorParameter("radius", 0.05);
   const double pose[16] = { 1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1 };
   cam->SetWorldToCameraElements(pose);
 }

@@ -1,6 +1,9 @@
 // Forward/back projection through a spherical mirror: accuracy on random points over several
 // geometries, agreement of the two solvers, and statuses at the extremes.
-#include "SphereProjection.h"
+#include "Polynomials.h"
+#include "Projector.h"
+#include "SphereMirror.h"
+#include "TestCameras.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -13,6 +16,7 @@
 #include <vector>
 
 using namespace catar;
+using catar_test::Sphere;
 
 namespace
 {
@@ -91,10 +95,10 @@ TEST(SphereProjection, RandomValidPointsSatisfyTheReflectionLaw)
   for (const Geometry& g : Geometries())
   {
     SCOPED_TRACE(g.name);
-    const SphereProjector proj(g.model);
+    const Projector proj(g.model);
     ASSERT_TRUE(proj.IsValid()) << proj.GetError();
-    const Vec3 c = g.model.mirror.center;
-    const double R = g.model.mirror.radius;
+    const Vec3 c = Sphere(g.model.mirror).center;
+    const double R = Sphere(g.model.mirror).radius;
     int valid = 0;
     int attempts = 0;
     double worstSphere = 0, worstAngle = 0, worstCoplanar = 0, worstBack = 0, worstAgree = 0;
@@ -103,7 +107,7 @@ TEST(SphereProjection, RandomValidPointsSatisfyTheReflectionLaw)
     while (valid < kPoints)
     {
       ASSERT_LT(++attempts, 50 * kPoints) << "too few valid points";
-      const Vec3 pCam = RandomPointAroundMirror(g.model.mirror, rng);
+      const Vec3 pCam = RandomPointAroundMirror(Sphere(g.model.mirror), rng);
       const ProjectedPoint q = proj.ProjectCamera(pCam, SolverType::Quartic);
       if (q.status != ProjectionStatus::Valid)
       {
@@ -177,9 +181,9 @@ TEST(SphereProjection, StartingNearbyGivesTheSameAnswer)
   for (const Geometry& g : Geometries())
   {
     SCOPED_TRACE(g.name);
-    const SphereProjector proj(g.model);
-    const Vec3 c = g.model.mirror.center;
-    const double R = g.model.mirror.radius;
+    const Projector proj(g.model);
+    const Vec3 c = Sphere(g.model.mirror).center;
+    const double R = Sphere(g.model.mirror).radius;
     double worst = 0.0;
     int valid = 0;
     for (int i = 0; i < 20000; ++i)
@@ -219,9 +223,9 @@ TEST(SphereProjection, ManyPointsAtOnceGiveWhatOneAtATimeGives)
   for (const Geometry& g : Geometries())
   {
     SCOPED_TRACE(g.name);
-    const SphereProjector proj(g.model);
-    const Vec3 c = g.model.mirror.center;
-    const double R = g.model.mirror.radius;
+    const Projector proj(g.model);
+    const Vec3 c = Sphere(g.model.mirror).center;
+    const double R = Sphere(g.model.mirror).radius;
     std::vector<Vec3> points, guesses;
     std::uniform_int_distribution<int> kind(0, 9);
     std::uniform_real_distribution<double> logd(std::log(0.5), std::log(200.0));
@@ -299,12 +303,12 @@ TEST(SphereProjection, StatusesAreConsistentAndNeverNaN)
   std::mt19937_64 rng(7);
   for (const Geometry& g : Geometries())
   {
-    const SphereProjector proj(g.model);
+    const Projector proj(g.model);
     for (int i = 0; i < 20000; ++i)
     {
       std::uniform_real_distribution<double> logd(std::log(0.2), std::log(1e6));
-      const Vec3 p =
-        g.model.mirror.center + g.model.mirror.radius * std::exp(logd(rng)) * RandomUnit(rng);
+      const Vec3 p = Sphere(g.model.mirror).center +
+        Sphere(g.model.mirror).radius * std::exp(logd(rng)) * RandomUnit(rng);
       for (SolverType s : { SolverType::Quartic, SolverType::Iterative })
       {
         const ProjectedPoint q = proj.ProjectCamera(p, s);
@@ -315,7 +319,7 @@ TEST(SphereProjection, StatusesAreConsistentAndNeverNaN)
           EXPECT_EQ(q.mirrorPoint, Vec3::Zero());
           EXPECT_EQ(q.pixel, Vec2::Zero());
         }
-        const double d = (p - g.model.mirror.center).norm() / g.model.mirror.radius;
+        const double d = (p - Sphere(g.model.mirror).center).norm() / Sphere(g.model.mirror).radius;
         if (d < 1.0 - 1e-9)
         {
           EXPECT_EQ(q.status, ProjectionStatus::InsideMirror);
@@ -341,7 +345,7 @@ protected:
 
 TEST_P(Extremes, OnTheCameraMirrorAxis)
 {
-  const SphereProjector proj(this->Model);
+  const Projector proj(this->Model);
   const Vec3 axis = Vec3::UnitZ();
   const Vec3 vertex(0, 0, 0.07);
   for (double z : { -10.0, -0.3, 0.0, 0.03, 0.0699 })
@@ -365,9 +369,9 @@ TEST_P(Extremes, OnTheCameraMirrorAxis)
 
 TEST_P(Extremes, TouchingTheMirror)
 {
-  const SphereProjector proj(this->Model);
-  const Vec3 c = this->Model.mirror.center;
-  const double R = this->Model.mirror.radius;
+  const Projector proj(this->Model);
+  const Vec3 c = Sphere(this->Model.mirror).center;
+  const double R = Sphere(this->Model.mirror).radius;
   // A point on the visible side is its own reflection.
   const Vec3 onFront = c + R * Vec3(0.3, -0.2, -1).normalized();
   ProjectedPoint q = proj.ProjectCamera(onFront, GetParam());
@@ -386,9 +390,9 @@ TEST_P(Extremes, TouchingTheMirror)
 
 TEST_P(Extremes, MillionRadiiAway)
 {
-  const SphereProjector proj(this->Model);
-  const Vec3 c = this->Model.mirror.center;
-  const double R = this->Model.mirror.radius;
+  const Projector proj(this->Model);
+  const Vec3 c = Sphere(this->Model.mirror).center;
+  const double R = Sphere(this->Model.mirror).radius;
   std::mt19937_64 rng(3);
   int valid = 0;
   int hidden = 0;
@@ -420,9 +424,9 @@ TEST_P(Extremes, MillionRadiiAway)
 
 TEST_P(Extremes, InsideTheSphere)
 {
-  const SphereProjector proj(this->Model);
-  const Vec3 c = this->Model.mirror.center;
-  const double R = this->Model.mirror.radius;
+  const Projector proj(this->Model);
+  const Vec3 c = Sphere(this->Model.mirror).center;
+  const double R = Sphere(this->Model.mirror).radius;
   const std::vector<Vec3> points = { c, c + 0.5 * R * Vec3::UnitX(),
     c + (1 - 1e-9) * R * Vec3(1, 1, -1).normalized() };
   for (const Vec3& p : points)
@@ -435,9 +439,9 @@ TEST_P(Extremes, InsideTheSphere)
 
 TEST_P(Extremes, BehindTheMirror)
 {
-  const SphereProjector proj(this->Model);
-  const Vec3 c = this->Model.mirror.center;
-  const double R = this->Model.mirror.radius;
+  const Projector proj(this->Model);
+  const Vec3 c = Sphere(this->Model.mirror).center;
+  const double R = Sphere(this->Model.mirror).radius;
   // In the shadow cone behind the sphere (as seen from the camera side).
   const std::vector<Vec3> points = { c + Vec3(0, 0, 2 * R), c + Vec3(0.2 * R, -0.1 * R, 5 * R),
     c + Vec3(0, 0, 1.0001 * R) };
@@ -449,9 +453,9 @@ TEST_P(Extremes, BehindTheMirror)
 
 TEST_P(Extremes, GrazingReflection)
 {
-  const SphereProjector proj(this->Model);
-  const Vec3 c = this->Model.mirror.center;
-  const double R = this->Model.mirror.radius;
+  const Projector proj(this->Model);
+  const Vec3 c = Sphere(this->Model.mirror).center;
+  const double R = Sphere(this->Model.mirror).radius;
   // Build mirror points whose camera ray meets the sphere at incidence cosine `cosInc`,
   // reflect, and put the point along the reflected ray.
   for (double cosInc : { 1e-2, 1e-4, 1e-6 })
@@ -489,7 +493,7 @@ TEST_P(Extremes, GrazingReflection)
 
 TEST_P(Extremes, InvalidInput)
 {
-  const SphereProjector proj(this->Model);
+  const Projector proj(this->Model);
   const double nan = std::nan("");
   const double inf = std::numeric_limits<double>::infinity();
   const std::vector<Vec3> points = { Vec3(nan, 0, 0), Vec3(0, inf, 1), Vec3(0, 0, -inf) };
@@ -501,8 +505,8 @@ TEST_P(Extremes, InvalidInput)
   }
   // An invalid camera (centre inside the sphere) makes every result invalid.
   CameraModel bad = this->Model;
-  bad.mirror.center = Vec3(0, 0, 0.01);
-  const SphereProjector badProj(bad);
+  bad.mirror = SphereMirror{ Vec3(0, 0, 0.01), Sphere(bad.mirror).radius };
+  const Projector badProj(bad);
   EXPECT_FALSE(badProj.IsValid());
   EXPECT_FALSE(badProj.GetError().empty());
   EXPECT_EQ(
@@ -518,7 +522,7 @@ TEST_P(Extremes, OutsideTheImage)
   m.intrinsics.height = 80;
   m.intrinsics.cx = 49.5;
   m.intrinsics.cy = 39.5;
-  const SphereProjector proj(m);
+  const Projector proj(m);
   const ProjectedPoint q = proj.ProjectCamera(Vec3(0.5, 0, 0.12), GetParam());
   ASSERT_EQ(q.status, ProjectionStatus::OutsideImage);
   EXPECT_FALSE(m.InImage(q.pixel));
@@ -536,7 +540,7 @@ TEST(SphereProjection, BackProjectionMissesAndHits)
   CameraModel m;
   m.intrinsics = Intrinsics{ 900, 900, 663.5, 523.5, 0, 1328, 1048 };
   m.mirror = SphereMirror{ Vec3(0, 0, 0.12), 0.05 };
-  const SphereProjector proj(m);
+  const Projector proj(m);
   // The principal point looks at the mirror vertex and reflects straight back.
   BackProjectedRay ray = proj.BackProjectCamera(Vec2(663.5, 523.5));
   ASSERT_EQ(ray.status, ProjectionStatus::Valid);

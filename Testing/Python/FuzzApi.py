@@ -145,7 +145,7 @@ def broken_meshes(rng, projected):
                 cdata.AddArray(a)
             elif kind == "garbage camera":
                 for name, count in (("CameraIntrinsics", 7), ("CameraDistortion", 5),
-                                    ("MirrorSphere", 4), ("WorldToCamera", 16)):
+                                    ("MirrorParameters", 4), ("WorldToCamera", 16)):
                     a = vtkDoubleArray()
                     a.SetNumberOfTuples(rng.choice([0, 1, count, count + 3]))
                     a.Fill(rng.choice(NUMBERS))

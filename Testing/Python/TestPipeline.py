@@ -19,8 +19,8 @@ def demo_camera():
     cam.SetImageHeight(240)
     cam.SetFocalLength(240, 240)
     cam.SetPrincipalPoint(159.5, 119.5)
-    cam.SetMirrorCenter(0, 0, 0.14)
-    cam.SetMirrorRadius(0.05)
+    cam.SetMirrorParameter("center", (0, 0, 0.14))
+    cam.SetMirrorParameter("radius", 0.05)
     # camera at world (0, -0.14, 1) looking along world +y, image up = world +z
     cam.SetWorldToCameraElements([1, 0, 0, 0, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1])
     return cam
@@ -61,7 +61,8 @@ class PipelineTest(unittest.TestCase):
             other = car.vtkCatadioptricCamera()
             self.assertTrue(other.Load(path), other.GetLastError())
             self.assertEqual(other.GetImageWidth(), 320)
-            self.assertAlmostEqual(other.GetMirrorRadius(), 0.05)
+            self.assertEqual(other.GetMirrorType(), "sphere")
+            self.assertAlmostEqual(other.GetMirrorParameter("radius")[0], 0.05)
 
     def test_pipeline_draws_the_sphere_where_it_projects(self):
         cam = demo_camera()
@@ -96,7 +97,7 @@ class PipelineTest(unittest.TestCase):
         # Far from the sphere's image, the frame shows through (not magenta).
         self.assertNotEqual(pixel(image, 5, 5)[:3], (255, 0, 255))
         # Moving the camera re-executes the per-frame stages.
-        cam.SetMirrorRadius(0.045)
+        cam.SetMirrorParameter("radius", 0.045)
         compositor.Update()
         self.assertEqual(cam.ProjectWorldPoint(centre, px, mp), car.vtkCatadioptricCamera.VALID)
         self.assertEqual(pixel(compositor.GetOutput(), *px), (255, 0, 255, 255))
@@ -139,10 +140,17 @@ class PipelineTest(unittest.TestCase):
         # SetDistortion(1) read past its argument (an unsized vtkSetVectorMacro) and crashed.
         cam = demo_camera()
         for name, size in (("SetDistortion", 5), ("SetFocalLength", 2),
-                           ("SetPrincipalPoint", 2), ("SetMirrorCenter", 3)):
+                           ("SetPrincipalPoint", 2)):
             for bad in ((1,), ("",), (None,), ([1.0] * (size - 1),)):
                 with self.assertRaises(TypeError, msg="%s%r" % (name, bad)):
                     getattr(cam, name)(*bad)
+        # Mirror parameters of the wrong count or key are refused and change nothing.
+        cam.GlobalWarningDisplayOff()
+        self.assertFalse(cam.SetMirrorParameter("center", [1.0, 2.0]))
+        self.assertFalse(cam.SetMirrorParameter("no such key", 1.0))
+        self.assertFalse(cam.SetMirrorType("no such type"))
+        self.assertEqual(cam.GetMirrorParameter("center"), (0.0, 0.0, 0.14))
+        cam.GlobalWarningDisplayOn()
         cam.SetDistortion([0.1, 0.2, 0.0, 0.0, 0.3])
         self.assertEqual(cam.GetDistortion(), (0.1, 0.2, 0.0, 0.0, 0.3))
         cam.SetDistortion(0.0, 0.0, 0.0, 0.0, 0.0)

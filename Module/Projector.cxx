@@ -1,4 +1,4 @@
-#include "SphereProjection.h"
+#include "Projector.h"
 
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
@@ -9,22 +9,35 @@
 
 namespace catar
 {
-SphereProjector::SphereProjector(const CameraModel& model)
+Projector::Projector(const CameraModel& model)
   : Model(model)
-  , Frame(model.mirror.center, model.mirror.radius)
 {
   this->Error = model.Validate();
   this->Valid = this->Error.empty();
+  if (this->Valid)
+  {
+    std::string error;
+    this->MirrorModel = MakeMirror(model.mirror, error);
+    this->Valid = this->MirrorModel != nullptr;
+    if (!this->Valid)
+    {
+      this->Error = error;
+    }
+  }
+  if (this->Valid)
+  {
+    this->BatchSize = std::max(1, std::min(this->MirrorModel->BatchSize(), Mirror::kMaxBatchSize));
+  }
   this->R = model.worldToCamera.topLeftCorner<3, 3>();
   this->T = model.worldToCamera.topRightCorner<3, 1>();
 }
 
-ProjectedPoint SphereProjector::ProjectCamera(const Vec3& p, SolverType solver) const
+ProjectedPoint Projector::ProjectCamera(const Vec3& p, SolverType solver) const
 {
   return this->ProjectCameraFrom(p, solver, nullptr);
 }
 
-ProjectedPoint SphereProjector::ProjectWorldNear(const Vec3& pWorld, const Vec3& mirrorGuess) const
+ProjectedPoint Projector::ProjectWorldNear(const Vec3& pWorld, const Vec3& mirrorGuess) const
 {
   if (!pWorld.allFinite() || !mirrorGuess.allFinite())
   {
@@ -33,17 +46,18 @@ ProjectedPoint SphereProjector::ProjectWorldNear(const Vec3& pWorld, const Vec3&
   return this->ProjectCameraFrom(this->R * pWorld + this->T, SolverType::Iterative, &mirrorGuess);
 }
 
-void SphereProjector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess,
+void Projector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess,
   ProjectedPoint* out, bool pixels) const
 {
-  constexpr int W = detail::MirrorFrame::kLanes;
+  constexpr int M = Mirror::kMaxBatchSize;
+  const std::size_t W = static_cast<std::size_t>(this->BatchSize);
   for (std::size_t first = 0; first < n; first += W)
   {
     const int lanes = static_cast<int>(std::min<std::size_t>(W, n - first));
-    Vec3 p[W], guess[W], r[W];
-    unsigned char fast[W];
+    Vec3 p[M], guess[M], r[M];
+    unsigned char fast[M];
     int count = 0;
-    int lane[W];
+    int lane[M];
     for (int l = 0; l < lanes; ++l)
     {
       const Vec3& w = pWorld[first + l];
@@ -59,7 +73,10 @@ void SphereProjector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const 
         out[first + l] = this->ProjectWorldNear(w, g);
       }
     }
-    this->Frame.ReflectNear(count, p, guess, r, fast);
+    if (count > 0)
+    {
+      this->MirrorModel->ReflectNear(count, p, guess, r, fast);
+    }
     for (int k = 0; k < count; ++k)
     {
       ProjectedPoint& o = out[first + lane[k]];
@@ -69,7 +86,7 @@ void SphereProjector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const 
   }
 }
 
-ProjectedPoint SphereProjector::ProjectCameraFrom(
+ProjectedPoint Projector::ProjectCameraFrom(
   const Vec3& p, SolverType solver, const Vec3* mirrorGuess) const
 {
   ProjectedPoint out;
@@ -79,7 +96,7 @@ ProjectedPoint SphereProjector::ProjectCameraFrom(
     return out;
   }
   Vec3 r;
-  const ProjectionStatus s = this->Frame.Reflect(p, solver, r, mirrorGuess);
+  const ProjectionStatus s = this->MirrorModel->Reflect(p, solver, r, mirrorGuess);
   if (s != ProjectionStatus::Valid)
   {
     out.status = s;
@@ -88,7 +105,7 @@ ProjectedPoint SphereProjector::ProjectCameraFrom(
   return this->Finish(p, r);
 }
 
-ProjectedPoint SphereProjector::Finish(const Vec3& p, const Vec3& r, bool pixel) const
+ProjectedPoint Projector::Finish(const Vec3& p, const Vec3& r, bool pixel) const
 {
   ProjectedPoint out;
   // The camera images only mirror points in front of it.
@@ -117,7 +134,7 @@ ProjectedPoint SphereProjector::Finish(const Vec3& p, const Vec3& r, bool pixel)
   return out;
 }
 
-ProjectedPoint SphereProjector::ProjectWorld(const Vec3& pWorld, SolverType solver) const
+ProjectedPoint Projector::ProjectWorld(const Vec3& pWorld, SolverType solver) const
 {
   if (!pWorld.allFinite())
   {
@@ -126,7 +143,7 @@ ProjectedPoint SphereProjector::ProjectWorld(const Vec3& pWorld, SolverType solv
   return this->ProjectCamera(this->R * pWorld + this->T, solver);
 }
 
-BackProjectedRay SphereProjector::BackProjectCamera(const Vec2& pixel) const
+BackProjectedRay Projector::BackProjectCamera(const Vec2& pixel) const
 {
   BackProjectedRay out;
   if (!this->Valid || !pixel.allFinite())
@@ -141,23 +158,12 @@ BackProjectedRay SphereProjector::BackProjectCamera(const Vec2& pixel) const
     return out;
   }
   const Vec3 d = Vec3(xy.x(), xy.y(), 1.0).normalized();
-  const Vec3& c = this->Model.mirror.center;
-  const double radius = this->Model.mirror.radius;
-  const double dc = d.dot(c);
-  const double c2r2 = c.squaredNorm() - radius * radius;
-  // disc = R^2 - (distance from the centre to the ray)^2, without the cancellation of
-  // (d.c)^2 - |c|^2 + R^2, which would cost digits at every pixel.
-  const double lateral = c.cross(d).norm();
-  const double disc = (radius - lateral) * (radius + lateral);
-  if (!(dc > 0.0) || !(disc >= 0.0))
+  Vec3 r, n;
+  if (!this->MirrorModel->Intersect(d, r, n))
   {
     out.status = ProjectionStatus::NoReflection;
     return out;
   }
-  // Nearer intersection, in the cancellation-free form s = (|c|^2 - R^2) / (d.c + sqrt(disc)).
-  const double s = c2r2 / (dc + std::sqrt(disc));
-  const Vec3 r = s * d;
-  const Vec3 n = (r - c) / radius;
   Vec3 refl = d - 2.0 * d.dot(n) * n;
   refl.normalize();
   out.mirrorPoint = r;
@@ -167,7 +173,7 @@ BackProjectedRay SphereProjector::BackProjectCamera(const Vec2& pixel) const
   return out;
 }
 
-BackProjectedRay SphereProjector::BackProjectWorld(const Vec2& pixel) const
+BackProjectedRay Projector::BackProjectWorld(const Vec2& pixel) const
 {
   BackProjectedRay out = this->BackProjectCamera(pixel);
   if (HasProjection(out.status))

@@ -1,0 +1,14 @@
+// The catalogue of mirror types: the one place a new shape is added (its own files hold the rest).
+#include "Mirror.h"
+
+#include "SphereMirror.h"
+
+namespace catar
+{
+const std::vector<MirrorType>& MirrorTypes()
+{
+  // The first is the default.
+  static const std::vector<MirrorType> types = { SphereMirrorType() };
+  return types;
+}
+} // namespace catar

@@ -1,0 +1,24 @@
+# House rule (the mirror seam): the sphere's names appear only in the sphere's own files
+# (Module/SphereMirror.*) and in the catalogue that lists the mirror types (Module/MirrorTypes.cxx).
+# Everything else reaches the mirror through Module/Mirror.h. Run: cmake -DSOURCE_DIR=... -P this.
+set(names "SphereMirror|SphereSurface|SphereReflectionPoint|MirrorFrame|MirrorSphere|MirrorCenter|MirrorRadius|mirror\\.center|mirror\\.radius")
+set(offenders "")
+foreach (folder Module Filters Rendering Applications ParaView Wrapping Examples)
+  file(GLOB_RECURSE files "${SOURCE_DIR}/${folder}/*.h" "${SOURCE_DIR}/${folder}/*.cxx"
+    "${SOURCE_DIR}/${folder}/*.in" "${SOURCE_DIR}/${folder}/*.py" "${SOURCE_DIR}/${folder}/*.xml")
+  foreach (f IN LISTS files)
+    file(RELATIVE_PATH rel "${SOURCE_DIR}" "${f}")
+    if (rel MATCHES "^Module/SphereMirror\\.(h|cxx)$" OR rel STREQUAL "Module/MirrorTypes.cxx")
+      continue()
+    endif ()
+    file(STRINGS "${f}" hits REGEX "${names}")
+    if (hits)
+      list(APPEND offenders "${rel}: ${hits}")
+    endif ()
+  endforeach ()
+endforeach ()
+if (offenders)
+  list(JOIN offenders "\n" text)
+  message(FATAL_ERROR "the sphere's names outside its own files:\n${text}")
+endif ()
+message(STATUS "the sphere's names appear only in Module/SphereMirror.* and Module/MirrorTypes.cxx")

@@ -1,0 +1,123 @@
+// The mirror seam: the catalogue of mirror types, descriptions, and the calibration file's mirror
+// keyed by type.
+#include "CalibrationIO.h"
+#include "Mirror.h"
+#include "Projector.h"
+#include "SphereMirror.h"
+#include "TestCameras.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+using namespace catar;
+
+TEST(MirrorTypes, EveryTypeDescribesItselfConsistently)
+{
+  ASSERT_FALSE(MirrorTypes().empty());
+  for (const MirrorType& t : MirrorTypes())
+  {
+    SCOPED_TRACE(t.name);
+    EXPECT_EQ(FindMirrorType(t.name), &t);
+    EXPECT_EQ(static_cast<int>(t.defaults.size()), t.ParameterCount());
+    ASSERT_TRUE(t.make && t.validate);
+    int offset = 0;
+    for (const MirrorParameter& p : t.parameters)
+    {
+      EXPECT_EQ(t.ParameterOffset(p.key), offset);
+      EXPECT_GE(p.count, 1);
+      offset += p.count;
+    }
+    // The defaults make a usable mirror that describes itself as given.
+    const MirrorDescription d(t.name, t.defaults);
+    std::string error;
+    const std::shared_ptr<const Mirror> m = MakeMirror(d, error);
+    ASSERT_TRUE(m) << error;
+    EXPECT_EQ(m->Describe(), d);
+    EXPECT_GE(m->BatchSize(), 1);
+    EXPECT_LE(m->BatchSize(), Mirror::kMaxBatchSize);
+  }
+  EXPECT_EQ(MirrorDescription().type, MirrorTypes().front().name);
+  EXPECT_EQ(FindMirrorType("no such mirror"), nullptr);
+}
+
+TEST(MirrorTypes, BadDescriptionsAreRefusedWithASentence)
+{
+  std::string error;
+  EXPECT_FALSE(MakeMirror(MirrorDescription("paraboloid of doom", { 1.0 }), error));
+  EXPECT_NE(error.find("unknown mirror type 'paraboloid of doom'"), std::string::npos) << error;
+  EXPECT_NE(error.find(MirrorTypeNames()), std::string::npos) << error;
+
+  const MirrorType& first = MirrorTypes().front();
+  std::vector<double> shortList = first.defaults;
+  shortList.pop_back();
+  EXPECT_FALSE(MakeMirror(MirrorDescription(first.name, shortList), error));
+  EXPECT_NE(
+    error.find("takes " + std::to_string(first.ParameterCount()) + " numbers"), std::string::npos)
+    << error;
+
+  std::vector<double> withNaN = first.defaults;
+  withNaN[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(MakeMirror(MirrorDescription(first.name, withNaN), error));
+  EXPECT_EQ(error, "mirror contains NaN or Inf");
+
+  // A camera model with a bad mirror is invalid, and so is its projector (no NaN comes out).
+  CameraModel m = catar_test::DemoCameraModel();
+  m.mirror = MirrorDescription(first.name, withNaN);
+  EXPECT_FALSE(m.Validate().empty());
+  const Projector projector(m);
+  EXPECT_FALSE(projector.IsValid());
+  EXPECT_EQ(projector.GetMirror(), nullptr);
+  EXPECT_EQ(projector.ProjectWorld(Vec3(0.1, -0.3, 0.9)).status, ProjectionStatus::InvalidInput);
+  EXPECT_EQ(projector.BackProjectWorld(Vec2(600, 500)).status, ProjectionStatus::InvalidInput);
+}
+
+TEST(SphereMirror, DescriptionRoundTrip)
+{
+  const SphereMirror s{ Vec3(0.01, -0.02, 0.2), 0.06 };
+  const MirrorDescription d = s;
+  EXPECT_EQ(d.type, "sphere");
+  ASSERT_EQ(d.parameters.size(), 4u);
+  SphereMirror back;
+  ASSERT_TRUE(SphereMirror::From(d, back));
+  EXPECT_EQ(back.center, s.center);
+  EXPECT_EQ(back.radius, s.radius);
+  EXPECT_FALSE(SphereMirror::From(MirrorDescription("other", d.parameters), back));
+
+  std::string error;
+  const std::shared_ptr<const Mirror> m = MakeMirror(d, error);
+  ASSERT_TRUE(m) << error;
+  EXPECT_EQ(m->Viewpoint(), s.center);
+  // The first point a ray meets lies on the sphere, with the outward normal there.
+  const Vec3 dir = Vec3(0.01, -0.02, 0.2).normalized();
+  Vec3 point, normal;
+  ASSERT_TRUE(m->Intersect(dir, point, normal));
+  EXPECT_NEAR((point - s.center).norm(), s.radius, 1e-15);
+  EXPECT_NEAR(normal.norm(), 1.0, 1e-15);
+  EXPECT_LT(normal.dot(dir), 0.0);
+  EXPECT_FALSE(m->Intersect(Vec3(1.0, 0.0, 0.0), point, normal));
+}
+
+TEST(CalibrationIO, MirrorIsKeyedByType)
+{
+  const std::string lens = R"({"image_width": 640, "image_height": 480,
+    "camera_matrix": [480, 0, 319.5, 0, 480, 239.5, 0, 0, 1], )";
+  CameraModel m;
+  std::string error;
+  // No type: the default type (a sphere file of before keeps loading).
+  ASSERT_TRUE(
+    ParseCalibration(lens + R"("mirror": {"center": [0, 0, 0.3], "radius": 0.1}})", m, error))
+    << error;
+  EXPECT_EQ(m.mirror, MirrorDescription("sphere", { 0, 0, 0.3, 0.1 }));
+  ASSERT_TRUE(ParseCalibration(
+    lens + R"("mirror": {"type": "sphere", "center": [0, 0, 0.3], "radius": 0.1}})", m, error));
+  EXPECT_EQ(m.mirror, MirrorDescription("sphere", { 0, 0, 0.3, 0.1 }));
+  EXPECT_FALSE(ParseCalibration(
+    lens + R"("mirror": {"type": "blob", "center": [0, 0, 0.3], "radius": 0.1}})", m, error));
+  EXPECT_NE(error.find("mirror type 'blob' is not supported (known: sphere"), std::string::npos)
+    << error;
+  EXPECT_FALSE(ParseCalibration(lens + R"("mirror": 3})", m, error));
+  EXPECT_NE(error.find("missing map 'mirror' {type, center, radius}"), std::string::npos) << error;
+}
