@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace catar
 {
@@ -139,18 +140,31 @@ void RenderRows(const Projector& projector, int samples, const ImageView& target
 {
   samples = std::max(1, std::min(8, samples));
   const double inv = 1.0 / (samples * samples);
+  // A row's samples are back-projected together (Projector's batches), then shaded in order.
+  const std::size_t perPixel = static_cast<std::size_t>(samples) * samples;
+  std::vector<Vec2> px(perPixel * static_cast<std::size_t>(std::max(0, target.width)));
+  std::vector<BackProjectedRay> rays(px.size());
   for (int y = std::max(0, y0); y < std::min(target.height, y1); ++y)
   {
+    std::size_t i = 0;
     for (int x = 0; x < target.width; ++x)
     {
-      Vec3 sum = Vec3::Zero();
       for (int sy = 0; sy < samples; ++sy)
       {
         for (int sx = 0; sx < samples; ++sx)
         {
-          const Vec2 px(x + (sx + 0.5) / samples - 0.5, y + (sy + 0.5) / samples - 0.5);
-          sum += color(px, projector.BackProjectWorld(px));
+          px[i++] = Vec2(x + (sx + 0.5) / samples - 0.5, y + (sy + 0.5) / samples - 0.5);
         }
+      }
+    }
+    projector.BackProjectWorld(px.size(), px.data(), rays.data());
+    i = 0;
+    for (int x = 0; x < target.width; ++x)
+    {
+      Vec3 sum = Vec3::Zero();
+      for (std::size_t k = 0; k < perPixel; ++k, ++i)
+      {
+        sum += color(px[i], rays[i]);
       }
       sum *= inv;
       std::uint8_t* out = target.pixel(x, y);

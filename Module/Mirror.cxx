@@ -28,6 +28,15 @@ void Mirror::ReflectNear(
   }
 }
 
+void Mirror::Intersect(
+  int n, const Vec3* directions, Vec3* points, Vec3* normals, unsigned char* hits) const
+{
+  for (int i = 0; i < n; ++i)
+  {
+    hits[i] = this->Intersect(directions[i], points[i], normals[i]) ? 1 : 0;
+  }
+}
+
 int MirrorType::ParameterCount() const
 {
   int count = 0;

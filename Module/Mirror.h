@@ -49,6 +49,10 @@ public:
   /// The first point of the mirror on the ray from the camera centre along the unit vector
   /// direction, and the unit normal there facing the camera. False when the ray misses it.
   virtual bool Intersect(const Vec3& direction, Vec3& point, Vec3& normal) const = 0;
+  /// Intersect for n rays at once: hits[i] = Intersect(directions[i], points[i], normals[i])
+  /// (a loop the compiler can overlap; this default calls Intersect one by one).
+  virtual void Intersect(
+    int n, const Vec3* directions, Vec3* points, Vec3* normals, unsigned char* hits) const;
 
   /// A point from which the world around the mirror is seen as the mirror shows it (the centre of
   /// a sphere): where an environment panorama is taken.

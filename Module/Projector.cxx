@@ -164,6 +164,13 @@ BackProjectedRay Projector::BackProjectCamera(const Vec2& pixel) const
     out.status = ProjectionStatus::NoReflection;
     return out;
   }
+  return this->Reflected(pixel, d, r, n);
+}
+
+BackProjectedRay Projector::Reflected(
+  const Vec2& pixel, const Vec3& d, const Vec3& r, const Vec3& n) const
+{
+  BackProjectedRay out;
   Vec3 refl = d - 2.0 * d.dot(n) * n;
   refl.normalize();
   out.mirrorPoint = r;
@@ -171,6 +178,69 @@ BackProjectedRay Projector::BackProjectCamera(const Vec2& pixel) const
   out.status =
     this->Model.InImage(pixel) ? ProjectionStatus::Valid : ProjectionStatus::OutsideImage;
   return out;
+}
+
+void Projector::BackProjectCamera(std::size_t n, const Vec2* pixels, BackProjectedRay* out) const
+{
+  constexpr int M = Mirror::kMaxBatchSize;
+  for (std::size_t first = 0; first < n; first += M)
+  {
+    const int count = static_cast<int>(std::min<std::size_t>(M, n - first));
+    Vec3 d[M], r[M], nrm[M];
+    unsigned char hit[M];
+    int todo = 0;
+    int index[M];
+    for (int i = 0; i < count; ++i)
+    {
+      const Vec2& pixel = pixels[first + i];
+      BackProjectedRay& o = out[first + i];
+      Vec2 xy;
+      if (!this->Valid || !pixel.allFinite())
+      {
+        o = BackProjectedRay();
+      }
+      else if (!this->Model.PixelToNormalized(pixel, xy))
+      {
+        o = BackProjectedRay();
+        o.status = ProjectionStatus::NoReflection;
+      }
+      else
+      {
+        d[todo] = Vec3(xy.x(), xy.y(), 1.0).normalized();
+        index[todo++] = i;
+      }
+    }
+    if (todo > 0)
+    {
+      this->MirrorModel->Intersect(todo, d, r, nrm, hit);
+    }
+    for (int k = 0; k < todo; ++k)
+    {
+      BackProjectedRay& o = out[first + index[k]];
+      if (hit[k])
+      {
+        o = this->Reflected(pixels[first + index[k]], d[k], r[k], nrm[k]);
+      }
+      else
+      {
+        o = BackProjectedRay();
+        o.status = ProjectionStatus::NoReflection;
+      }
+    }
+  }
+}
+
+void Projector::BackProjectWorld(std::size_t n, const Vec2* pixels, BackProjectedRay* out) const
+{
+  this->BackProjectCamera(n, pixels, out);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (HasProjection(out[i].status))
+    {
+      out[i].mirrorPoint = this->Model.CameraToWorld(out[i].mirrorPoint);
+      out[i].direction = this->Model.CameraToWorldDirection(out[i].direction);
+    }
+  }
 }
 
 BackProjectedRay Projector::BackProjectWorld(const Vec2& pixel) const

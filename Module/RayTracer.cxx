@@ -174,29 +174,38 @@ bool RayTracer::PrepareRays(const Projector& projector, int samples)
   const std::size_t count = static_cast<std::size_t>(w) * h * samples * samples;
   this->Rays.resize(count);
   this->RayValid.assign(count, 0);
+  // A row's samples are back-projected together (Projector's batches).
+  const std::size_t perRow = static_cast<std::size_t>(w) * samples * samples;
+  std::vector<Vec2> pixels(perRow);
+  std::vector<BackProjectedRay> rays(perRow);
   std::size_t i = 0;
   for (int y = 0; y < h; ++y)
   {
+    std::size_t j = 0;
     for (int x = 0; x < w; ++x)
     {
       for (int sy = 0; sy < samples; ++sy)
       {
-        for (int sx = 0; sx < samples; ++sx, ++i)
+        for (int sx = 0; sx < samples; ++sx)
         {
-          const Vec2 px(x + (sx + 0.5) / samples - 0.5, y + (sy + 0.5) / samples - 0.5);
-          const BackProjectedRay ray = projector.BackProjectWorld(px);
-          if (!HasProjection(ray.status))
-          {
-            continue;
-          }
-          for (int k = 0; k < 3; ++k)
-          {
-            this->Rays[i].origin[k] = static_cast<float>(ray.mirrorPoint[k]);
-            this->Rays[i].direction[k] = static_cast<float>(ray.direction[k]);
-          }
-          this->RayValid[i] = 1;
+          pixels[j++] = Vec2(x + (sx + 0.5) / samples - 0.5, y + (sy + 0.5) / samples - 0.5);
         }
       }
+    }
+    projector.BackProjectWorld(perRow, pixels.data(), rays.data());
+    for (j = 0; j < perRow; ++j, ++i)
+    {
+      const BackProjectedRay& ray = rays[j];
+      if (!HasProjection(ray.status))
+      {
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        this->Rays[i].origin[k] = static_cast<float>(ray.mirrorPoint[k]);
+        this->Rays[i].direction[k] = static_cast<float>(ray.direction[k]);
+      }
+      this->RayValid[i] = 1;
     }
   }
   this->Width = w;

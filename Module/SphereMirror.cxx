@@ -423,17 +423,18 @@ ProjectionStatus SphereReflectionPoint(
   return detail::SphereSurface(centre, radius).Reflect(point, solver, mirrorPoint);
 }
 
-bool detail::SphereSurface::Intersect(const Vec3& d, Vec3& point, Vec3& normal) const
+namespace
 {
-  const Vec3& c = this->Centre;
-  const double radius = this->Radius;
+// The nearer intersection of the ray from the origin along the unit vector d with the sphere.
+inline bool IntersectSphere(const Vec3& c, double radius, const Vec3& d, Vec3& point, Vec3& normal)
+{
   const double dc = d.dot(c);
   const double c2r2 = c.squaredNorm() - radius * radius;
   // disc = R^2 - (distance from the centre to the ray)^2, without the cancellation of
   // (d.c)^2 - |c|^2 + R^2, which would cost digits at every pixel.
   const double lateral = c.cross(d).norm();
   const double disc = (radius - lateral) * (radius + lateral);
-  if (!this->Valid || !(dc > 0.0) || !(disc >= 0.0))
+  if (!(dc > 0.0) || !(disc >= 0.0))
   {
     return false;
   }
@@ -442,6 +443,23 @@ bool detail::SphereSurface::Intersect(const Vec3& d, Vec3& point, Vec3& normal) 
   point = s * d;
   normal = (point - c) / radius;
   return true;
+}
+} // namespace
+
+bool detail::SphereSurface::Intersect(const Vec3& d, Vec3& point, Vec3& normal) const
+{
+  return this->Valid && IntersectSphere(this->Centre, this->Radius, d, point, normal);
+}
+
+void detail::SphereSurface::Intersect(
+  int n, const Vec3* directions, Vec3* points, Vec3* normals, unsigned char* hits) const
+{
+  const Vec3 c = this->Centre;
+  const double radius = this->Radius;
+  for (int i = 0; i < n; ++i)
+  {
+    hits[i] = this->Valid && IntersectSphere(c, radius, directions[i], points[i], normals[i]);
+  }
 }
 
 SphereMirror::operator MirrorDescription() const

@@ -80,6 +80,8 @@ public:
     unsigned char* settled) const override;
 
   bool Intersect(const Vec3& direction, Vec3& point, Vec3& normal) const override;
+  void Intersect(
+    int n, const Vec3* directions, Vec3* points, Vec3* normals, unsigned char* hits) const override;
   Vec3 Viewpoint() const override { return this->Centre; }
 
 private:

@@ -134,6 +134,30 @@ void BM_BackProjection(benchmark::State& state)
 }
 BENCHMARK(BM_BackProjection);
 
+// The same pixels through the batched call (what the environment source and the ray tracer use).
+void BM_BackProjectionBatch(benchmark::State& state)
+{
+  const CameraModel model = DemoScene().camera;
+  const Projector proj(model);
+  std::vector<Vec2> pixels;
+  for (int y = 0; y < model.intrinsics.height; y += 16)
+  {
+    for (int x = 0; x < model.intrinsics.width; x += 16)
+    {
+      pixels.emplace_back(x, y);
+    }
+  }
+  std::vector<BackProjectedRay> rays(pixels.size());
+  for (auto _ : state)
+  {
+    proj.BackProjectWorld(pixels.size(), pixels.data(), rays.data());
+    benchmark::DoNotOptimize(rays.data());
+    benchmark::ClobberMemory();
+  }
+  SetPerItem(state, pixels.size());
+}
+BENCHMARK(BM_BackProjectionBatch);
+
 void BM_RasterizeTriangle(benchmark::State& state)
 {
   // Triangles of about `area` pixels at random places of a 1328x1048 image.
