@@ -1,5 +1,8 @@
 #include "vtkCatadioptricLighting.h"
 
+#include "Polygons.h"
+#include "ShadeBatch.h"
+
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricLightingSupport.h"
 
@@ -52,104 +55,6 @@ catar::Vec3 V3(const double* v)
 {
   return catar::Vec3(v[0], v[1], v[2]);
 }
-
-// Rounds to nearest, halves up, as std::lround does for these values (without a library call:
-// 255 v + 0.5 is exact for every v in [1/510, 1]).
-unsigned char ToByte(double v)
-{
-  return static_cast<unsigned char>(255.0 * std::min(1.0, std::max(0.0, v)) + 0.5);
-}
-
-// Points shaded kShadeLanes at a time (catar::ShadeMany: their square roots and divisions
-// overlap), each with the RGBA bytes it writes. One per thread.
-class ShadeBatch
-{
-public:
-  // The settings of one execution: the shade of a point is
-  // catar::Shade(p, n (turned to the viewer when two-sided), viewer, lights, material with
-  // ambient and diffuse from the base colour when there is one, globalAmbient, shadow flags).
-  struct Settings
-  {
-    const catar::LightSet* Lights;
-    vtkCatadioptricLightingSupport::MaterialEntry Default;
-    // A material per point (MaterialIndex into Materials), or none: Default everywhere.
-    const std::vector<vtkCatadioptricLightingSupport::MaterialEntry>* Materials;
-    catar::Vec3 GlobalAmbient;
-    bool BaseColours, TwoSided;
-    const catar::RayScene* ShadowScene; // null: no shadows
-  };
-
-  explicit ShadeBatch(const Settings& settings)
-    : S(settings)
-    , Lit(static_cast<size_t>(W) * settings.Lights->size(), 1)
-  {
-    std::fill(this->M, this->M + W, settings.Default.Material);
-    std::fill(this->Opacity, this->Opacity + W, settings.Default.Opacity);
-  }
-  ~ShadeBatch() { this->Flush(); }
-
-  // Point p (normal n, viewer: world), base colour rgba, material (an index into the settings'
-  // Materials, or -1: the default), whose colour goes to out[0..3].
-  void Add(const catar::Vec3& p, const catar::Vec3& n, const catar::Vec3& viewer,
-    const float rgba[4], unsigned char* out, int material = -1)
-  {
-    const int i = this->Count;
-    const vtkCatadioptricLightingSupport::MaterialEntry& m =
-      material < 0 ? this->S.Default : (*this->S.Materials)[material];
-    if (material >= 0)
-    {
-      this->M[i] = m.Material;
-      this->Opacity[i] = m.Opacity;
-    }
-    if (this->S.BaseColours)
-    {
-      const catar::Vec3 c(rgba[0], rgba[1], rgba[2]);
-      this->M[i].ambient = m.AmbientK * c;
-      this->M[i].diffuse = m.DiffuseK * c;
-    }
-    this->P[i] = p;
-    this->N[i] = (this->S.TwoSided && n.dot(viewer - p) < 0) ? catar::Vec3(-n) : n;
-    this->Viewer[i] = viewer;
-    if (this->S.ShadowScene)
-    {
-      catar::TraceShadows(*this->S.ShadowScene, p, this->N[i], *this->S.Lights,
-        this->Lit.data() + i * this->S.Lights->size());
-    }
-    this->Alpha[i] = rgba[3];
-    this->Out[i] = out;
-    if (++this->Count == W)
-    {
-      this->Flush();
-    }
-  }
-
-  void Flush()
-  {
-    catar::Vec3 colour[W];
-    catar::ShadeMany(this->Count, this->P, this->N, this->Viewer, *this->S.Lights, this->M,
-      this->S.GlobalAmbient, this->S.ShadowScene ? this->Lit.data() : nullptr, false, colour);
-    for (int i = 0; i < this->Count; ++i)
-    {
-      unsigned char* o = this->Out[i];
-      o[0] = ToByte(colour[i].x());
-      o[1] = ToByte(colour[i].y());
-      o[2] = ToByte(colour[i].z());
-      o[3] = ToByte(this->Opacity[i] * this->Alpha[i]);
-    }
-    this->Count = 0;
-  }
-
-private:
-  static constexpr int W = catar::kShadeLanes;
-  const Settings& S;
-  std::vector<unsigned char> Lit; // W x lights shadow flags
-  int Count = 0;
-  catar::Vec3 P[W], N[W], Viewer[W];
-  catar::Material M[W];
-  double Opacity[W];
-  float Alpha[W];
-  unsigned char* Out[W];
-};
 
 // Whether one of n normals (read through the raw pointer of their type when given) has zero
 // length or a NaN or infinite component.
@@ -418,16 +323,14 @@ int vtkCatadioptricLighting::RequestData(
                   "vtkCatadioptricLighting.");
     return 0;
   }
-  const catar::CameraModel model = camera->GetModel();
-  const catar::Mat3 cameraToWorld = model.worldToCamera.topLeftCorner<3, 3>().transpose();
-  const catar::Vec3 cameraT = model.worldToCamera.topRightCorner<3, 1>();
+  const catar::PoseFrames pose(camera->GetModel().worldToCamera);
 
   // Material and base colours; a material per point when the input carries a table of them.
   vtkProperty* prop = this->Property;
   const catar::Material material =
     vtkCatadioptricLightingSupport::ConvertProperty(prop, this->Emission);
   const double opacity = prop->GetOpacity();
-  std::vector<vtkCatadioptricLightingSupport::MaterialEntry> materials;
+  std::vector<catar::ShadingMaterial> materials;
   vtkDataArray* materialIndex = nullptr;
   {
     std::string error;
@@ -450,8 +353,8 @@ int vtkCatadioptricLighting::RequestData(
     lightList, material, globalAmbient, prop->GetAmbient(), prop->GetDiffuse(), opacity);
   for (size_t m = 0; m < materials.size() && lightingError.empty(); ++m)
   {
-    lightingError = catar::ValidateLighting(lightList, materials[m].Material, globalAmbient,
-      materials[m].AmbientK, materials[m].DiffuseK, materials[m].Opacity);
+    lightingError = catar::ValidateLighting(lightList, materials[m].material, globalAmbient,
+      materials[m].ambientK, materials[m].diffuseK, materials[m].opacity);
     if (!lightingError.empty())
     {
       lightingError = "material " + std::to_string(m) + ": " + lightingError;
@@ -504,14 +407,14 @@ int vtkCatadioptricLighting::RequestData(
 
   // The colour of point p with normal n seen from viewer (all world), base colour rgba: shaded
   // in batches (ShadeBatch), one per thread.
-  ShadeBatch::Settings shading;
-  shading.Lights = &lights;
-  shading.Default = { material, prop->GetAmbient(), prop->GetDiffuse(), opacity };
-  shading.Materials = &materials;
-  shading.GlobalAmbient = globalAmbient;
-  shading.BaseColours = base.HasArray();
-  shading.TwoSided = this->TwoSidedLighting;
-  shading.ShadowScene = shadowScene;
+  catar::ShadeBatch::Settings shading;
+  shading.lights = &lights;
+  shading.defaults = { material, prop->GetAmbient(), prop->GetDiffuse(), opacity };
+  shading.materials = &materials;
+  shading.globalAmbient = globalAmbient;
+  shading.baseColours = base.HasArray();
+  shading.twoSided = this->TwoSidedLighting;
+  shading.shadowScene = shadowScene;
 
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetName(vtkCatadioptricArrayNames::Colors);
@@ -527,33 +430,19 @@ int vtkCatadioptricLighting::RequestData(
     std::vector<float> pointBase;
     if (base.HasArray() && !base.IsPerPoint())
     {
-      pointBase.assign(4 * static_cast<size_t>(nPts), 0.0f);
-      std::vector<int> count(nPts, 0);
       vtkCellArray* polys = input->GetPolys();
       const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
       vtkNew<vtkIdList> ids;
-      for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
-      {
-        polys->GetCellAtId(c, ids);
-        float v[4];
-        base.Get(0, first + c, v);
-        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-        {
-          const vtkIdType id = ids->GetId(k);
-          for (int j = 0; j < 4; ++j)
+      pointBase = catar::AverageAtPoints<float>(
+        static_cast<std::size_t>(nPts), static_cast<std::size_t>(polys->GetNumberOfCells()), 4,
+        [&](std::size_t c, auto&& visit) {
+          polys->GetCellAtId(static_cast<vtkIdType>(c), ids);
+          for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
           {
-            pointBase[4 * id + j] += v[j];
+            visit(static_cast<std::size_t>(ids->GetId(k)));
           }
-          ++count[id];
-        }
-      }
-      for (vtkIdType i = 0; i < nPts; ++i)
-      {
-        for (int j = 0; j < 4; ++j)
-        {
-          pointBase[4 * i + j] /= std::max(1, count[i]);
-        }
-      }
+        },
+        [&](std::size_t c, float* v) { base.Get(0, first + static_cast<vtkIdType>(c), v); });
     }
     colors->SetNumberOfTuples(nPts);
     unsigned char* out = colors->GetPointer(0);
@@ -575,7 +464,7 @@ int vtkCatadioptricLighting::RequestData(
       ? &this->Internal->GetNormals(input)
       : nullptr;
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
-      ShadeBatch batch(shading);
+      catar::ShadeBatch batch(shading);
       for (vtkIdType i = b; i < e; ++i)
       {
         unsigned char* o = out + 4 * i;
@@ -626,8 +515,8 @@ int vtkCatadioptricLighting::RequestData(
         {
           std::copy(&pointBase[4 * i], &pointBase[4 * i] + 4, rgba);
         }
-        // The viewer: the reflection point, camera to world (CameraModel::CameraToWorld).
-        batch.Add(p, n, cameraToWorld * (V3(mp) - cameraT), rgba, o,
+        // The viewer: the reflection point, camera to world.
+        batch.Add(p, n, pose.ToWorld(V3(mp)), rgba, o,
           materialIndex ? static_cast<int>(materialIndex->GetComponent(i, 0)) : -1);
       }
     });
@@ -647,7 +536,7 @@ int vtkCatadioptricLighting::RequestData(
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(cellVisible);
     vtkCatadioptricParallel::For(
       0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
-        ShadeBatch batch(shading);
+        catar::ShadeBatch batch(shading);
         vtkNew<vtkIdList> scratch;
         for (vtkIdType c = b; c < e; ++c)
         {
@@ -661,16 +550,15 @@ int vtkCatadioptricLighting::RequestData(
           const vtkIdType* pts = nullptr;
           polys->GetCellAtId(c, n, pts, scratch); // no copy when the ids are stored as vtkIdType
           catar::Vec3 centroid = catar::Vec3::Zero();
-          catar::Vec3 area = catar::Vec3::Zero();
-          catar::Vec3 last = points(pts[n - 1]);
+          catar::NewellNormal newell(points(pts[n - 1]));
           for (vtkIdType k = 0; k < n; ++k)
           {
             const catar::Vec3 a = points(pts[k]);
             centroid += a;
-            area += last.cross(a);
-            last = a;
+            newell.Add(a);
           }
           centroid /= static_cast<double>(n);
+          const catar::Vec3& area = newell.Sum();
           // Base colour: a cell colour, or the mean of the point colours.
           float rgba[4] = { 0, 0, 0, 0 };
           for (vtkIdType k = 0; k < (base.IsPerPoint() ? n : 1); ++k)
@@ -692,14 +580,14 @@ int vtkCatadioptricLighting::RequestData(
             const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
             double cm[3];
             centroidMirror->GetTuple(cellId, cm);
-            batch.Add(centroid, normal, cameraToWorld * (V3(cm) - cameraT), rgba, o, m);
+            batch.Add(centroid, normal, pose.ToWorld(V3(cm)), rgba, o, m);
           }
           else
           {
-            o[0] = ToByte(rgba[0]);
-            o[1] = ToByte(rgba[1]);
-            o[2] = ToByte(rgba[2]);
-            o[3] = ToByte((m < 0 ? opacity : materials[m].Opacity) * rgba[3]);
+            o[0] = catar::ColourByte(rgba[0]);
+            o[1] = catar::ColourByte(rgba[1]);
+            o[2] = catar::ColourByte(rgba[2]);
+            o[3] = catar::ColourByte((m < 0 ? opacity : materials[m].opacity) * rgba[3]);
           }
         }
       });

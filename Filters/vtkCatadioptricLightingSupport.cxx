@@ -1,5 +1,7 @@
 #include "vtkCatadioptricLightingSupport.h"
 
+#include "Polygons.h"
+
 #include "RayScene.h"
 
 #include "vtkCatadioptricArrayNames.h"
@@ -111,14 +113,14 @@ bool vtkCatadioptricLightingSupport::ReadMaterials(vtkPolyData* mesh, const doub
     double v[MaterialComponents];
     table->GetTuple(m, v);
     MaterialEntry e;
-    e.AmbientK = v[0];
-    e.DiffuseK = v[1];
-    e.Material.ambient = v[0] * catar::Vec3(v[4], v[5], v[6]);
-    e.Material.diffuse = v[1] * catar::Vec3(v[7], v[8], v[9]);
-    e.Material.specular = v[2] * catar::Vec3(v[10], v[11], v[12]);
-    e.Material.shininess = v[3];
-    e.Material.emission = catar::Vec3(emission[0], emission[1], emission[2]);
-    e.Opacity = v[13];
+    e.ambientK = v[0];
+    e.diffuseK = v[1];
+    e.material.ambient = v[0] * catar::Vec3(v[4], v[5], v[6]);
+    e.material.diffuse = v[1] * catar::Vec3(v[7], v[8], v[9]);
+    e.material.specular = v[2] * catar::Vec3(v[10], v[11], v[12]);
+    e.material.shininess = v[3];
+    e.material.emission = catar::Vec3(emission[0], emission[1], emission[2]);
+    e.opacity = v[13];
     materials.push_back(e);
   }
   double range[2];
@@ -174,14 +176,12 @@ std::vector<catar::Vec3> vtkCatadioptricLightingSupport::VertexNormals(vtkPolyDa
   {
     polys->GetCellAtId(c, ids);
     const vtkIdType n = ids->GetNumberOfIds();
-    catar::Vec3 area = catar::Vec3::Zero();
-    for (vtkIdType k = 0; k < n; ++k)
-    {
-      double a[3], b[3];
-      mesh->GetPoint(ids->GetId(k), a);
-      mesh->GetPoint(ids->GetId((k + 1) % n), b);
-      area += V3(a).cross(V3(b));
-    }
+    const catar::Vec3 area =
+      catar::PolygonNormal(ids->GetPointer(0), static_cast<std::size_t>(n), [&](vtkIdType id) {
+        double a[3];
+        mesh->GetPoint(id, a);
+        return V3(a);
+      });
     for (vtkIdType k = 0; k < n; ++k)
     {
       normals[ids->GetId(k)] += area;
@@ -222,12 +222,12 @@ bool vtkCatadioptricLightingSupport::BuildRayScene(
     for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
     {
       polys->GetCellAtId(c, ids);
-      for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
-      {
-        tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(0)));
-        tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k)));
-        tris.push_back(offset + static_cast<std::uint32_t>(ids->GetId(k + 1)));
-      }
+      catar::PolygonTriangles(ids->GetPointer(0), static_cast<std::size_t>(ids->GetNumberOfIds()),
+        [&](vtkIdType a, vtkIdType b, vtkIdType d) {
+          tris.push_back(offset + static_cast<std::uint32_t>(a));
+          tris.push_back(offset + static_cast<std::uint32_t>(b));
+          tris.push_back(offset + static_cast<std::uint32_t>(d));
+        });
     }
   }
   if (!scene.Build(xyz, tris))

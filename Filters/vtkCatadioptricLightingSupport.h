@@ -12,6 +12,7 @@
 
 #include "CatadioptricARFiltersModule.h" // for export macro
 #include "Lighting.h"                    // for catar::LightSource, catar::Material
+#include "ShadeBatch.h"                  // for catar::ShadingMaterial
 
 #include <string> // for std::string
 #include <vector> // for std::vector
@@ -36,15 +37,8 @@ public:
   /// shininess = SpecularPower, and the given emission.
   static catar::Material ConvertProperty(vtkProperty* property, const double emission[3]);
 
-  /// A material of a multi-material mesh: the Phong material, and the factors that scale a base
-  /// colour into its ambient and diffuse colours, and the opacity.
-  struct MaterialEntry
-  {
-    catar::Material Material;
-    double AmbientK = 1.0;
-    double DiffuseK = 1.0;
-    double Opacity = 1.0;
-  };
+  /// A material of a multi-material mesh (Core's ShadingMaterial).
+  using MaterialEntry = catar::ShadingMaterial;
 
   /// The number of components of a material in the field-data array "Materials": ambient,
   /// diffuse, specular, specular power, ambient colour (3), diffuse colour (3), specular colour

@@ -1,5 +1,6 @@
 #include "vtkCatadioptricMeshConversion.h"
 
+#include "Polygons.h"
 #include "TriangleMesh.h"
 
 #include "vtkCellArray.h"
@@ -51,10 +52,7 @@ void vtkCatadioptricMeshConversion::ToTriangleMesh(
     const vtkIdType* ids;
     polys->GetCurrentCell(n, ids);
     nPolygons += n > 3;
-    for (vtkIdType k = 1; k + 1 < n; ++k) // fan
-    {
-      add(ids[0], ids[k], ids[k + 1]);
-    }
+    catar::PolygonTriangles(ids, static_cast<std::size_t>(n), add);
   }
   if (nPolygons > 0)
   {
@@ -68,17 +66,7 @@ void vtkCatadioptricMeshConversion::ToTriangleMesh(
     vtkIdType n;
     const vtkIdType* ids;
     strips->GetCurrentCell(n, ids);
-    for (vtkIdType k = 0; k + 2 < n; ++k) // alternate orientation along the strip
-    {
-      if (k % 2 == 0)
-      {
-        add(ids[k], ids[k + 1], ids[k + 2]);
-      }
-      else
-      {
-        add(ids[k + 1], ids[k], ids[k + 2]);
-      }
-    }
+    catar::StripTriangles(ids, static_cast<std::size_t>(n), add);
   }
   vtkPointData* pd = input->GetPointData();
   for (int a = 0; a < pd->GetNumberOfArrays(); ++a)

@@ -1,6 +1,7 @@
 #include "vtkCatadioptricProjection.h"
 
 #include "CameraModel.h"
+#include "Polygons.h"
 #include "Projector.h"
 
 #include "vtkCatadioptricArrayNames.h"
@@ -90,9 +91,8 @@ struct CellWorker
       }
       catar::Vec3 centroid = catar::Vec3::Zero();
       catar::Vec3 guess = catar::Vec3::Zero();
-      catar::Vec3 normal = catar::Vec3::Zero(); // Newell's normal, |normal| = 2 area
       const double* lp = this->Vertices[ids[n - 1]].point;
-      catar::Vec3 last(lp[0], lp[1], lp[2]);
+      catar::NewellNormal newell(catar::Vec3(lp[0], lp[1], lp[2])); // |normal| = 2 area
       bool all = true;
       double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
       for (vtkIdType k = 0; k < n; ++k)
@@ -107,8 +107,7 @@ struct CellWorker
         centroid += p;
         if (this->CullBackFaces)
         {
-          normal += last.cross(p);
-          last = p;
+          newell.Add(p);
         }
         guess += catar::Vec3(v.mirror[0], v.mirror[1], v.mirror[2]);
         xmin = std::min(xmin, v.pixel[0]);
@@ -122,6 +121,7 @@ struct CellWorker
       }
       centroid /= static_cast<double>(n);
       guess /= static_cast<double>(n);
+      const catar::Vec3& normal = newell.Sum();
       if (this->CullBackFaces)
       {
         // Facing away from the viewer (the reflection point) by more than a sliver: dropped
@@ -371,9 +371,9 @@ int vtkCatadioptricProjection::RequestData(
     worker.Width = camera->GetImageWidth();
     worker.Height = camera->GetImageHeight();
     worker.CullBackFaces = this->BackFaceCulling;
-    const catar::Mat4& pose = projector.GetModel().worldToCamera;
-    worker.CameraToWorldRotation = pose.topLeftCorner<3, 3>().transpose();
-    worker.CameraCentre = -worker.CameraToWorldRotation * pose.topRightCorner<3, 1>();
+    const catar::PoseFrames pose(projector.GetModel().worldToCamera);
+    worker.CameraToWorldRotation = pose.rotationT;
+    worker.CameraCentre = pose.centre;
     input->GetPolys()->Visit(CellDispatch{}, worker);
   }
   vtkCellData* cd = output->GetCellData();

@@ -112,6 +112,28 @@ struct CameraModel
   CameraModel Resized(int width, int height) const;
 };
 
+/// A world-to-camera pose taken apart once for many points: world <-> camera frame without
+/// re-reading the 4x4 matrix (the same arithmetic as CameraModel's WorldToCamera/CameraToWorld).
+struct PoseFrames
+{
+  explicit PoseFrames(const Mat4& worldToCamera)
+    : rotation(worldToCamera.topLeftCorner<3, 3>())
+    , rotationT(rotation.transpose())
+    , translation(worldToCamera.topRightCorner<3, 1>())
+    , centre(-rotationT * translation)
+  {
+  }
+  Mat3 rotation;    ///< R, world to camera
+  Mat3 rotationT;   ///< R^T, camera to world
+  Vec3 translation; ///< t
+  Vec3 centre;      ///< -R^T t: the camera centre in world coordinates
+  Vec3 ToCamera(const Vec3& pWorld) const { return this->rotation * pWorld + this->translation; }
+  Vec3 ToWorld(const Vec3& pCamera) const
+  {
+    return this->rotationT * (pCamera - this->translation);
+  }
+};
+
 /// Applies OpenCV's distortion to normalised coordinates (x/z, y/z).
 Vec2 Distort(const Distortion& d, const Vec2& xy);
 } // namespace catar

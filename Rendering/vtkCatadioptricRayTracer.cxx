@@ -1,5 +1,6 @@
 #include "vtkCatadioptricRayTracer.h"
 
+#include "Polygons.h"
 #include "Projector.h"
 #include "RayTracer.h"
 
@@ -289,16 +290,15 @@ int vtkCatadioptricRayTracer::RequestData(
     for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
     {
       polys->GetCellAtId(c, ids);
-      for (vtkIdType k = 1; k + 1 < ids->GetNumberOfIds(); ++k)
-      {
-        tm.triangles.push_back(
-          { static_cast<std::uint32_t>(ids->GetId(0)), static_cast<std::uint32_t>(ids->GetId(k)),
-            static_cast<std::uint32_t>(ids->GetId(k + 1)) });
-        triangleCells.push_back(firstCell + c);
-        tm.triangleIds.push_back(original
-            ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
-            : static_cast<catar::RasterId>(firstCell + c));
-      }
+      catar::PolygonTriangles(ids->GetPointer(0), static_cast<std::size_t>(ids->GetNumberOfIds()),
+        [&](vtkIdType a, vtkIdType b, vtkIdType d) {
+          tm.triangles.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+            static_cast<std::uint32_t>(d) });
+          triangleCells.push_back(firstCell + c);
+          tm.triangleIds.push_back(original
+              ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
+              : static_cast<catar::RasterId>(firstCell + c));
+        });
     }
 
     vtkCatadioptricLighting* lighting = this->GetMeshLighting(m);
