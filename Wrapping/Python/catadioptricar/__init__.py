@@ -6,12 +6,15 @@
     projection = car.vtkCatadioptricProjection()
     projection.SetCamera(camera)
 
-The classes come from the wrapped VTK modules CatadioptricARFilters and CatadioptricARRendering;
+The classes come from the wrapped VTK modules CatadioptricARCommon (the camera),
+CatadioptricARFilters, CatadioptricARRendering and CatadioptricARScene (scene files);
 VTK itself (ParaView's vtkmodules) is imported as needed.
 """
 
+from .CatadioptricARCommon import *  # noqa: F401,F403
 from .CatadioptricARFilters import *  # noqa: F401,F403
 from .CatadioptricARRendering import *  # noqa: F401,F403
+from .CatadioptricARScene import *  # noqa: F401,F403
 
 __all__ = [name for name in dir() if name.startswith("vtk")]
 

@@ -21,7 +21,7 @@
 #ifndef vtkCatadioptricSceneRenderer_h
 #define vtkCatadioptricSceneRenderer_h
 
-#include "CatadioptricARRenderingModule.h" // for export macro
+#include "CatadioptricARSceneModule.h" // for export macro
 #include "vtkObject.h"
 
 #include <memory> // for std::unique_ptr
@@ -30,7 +30,7 @@ class vtkCatadioptricCamera;
 class vtkImageData;
 class vtkLightCollection;
 
-class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricSceneRenderer : public vtkObject
+class CATADIOPTRICARSCENE_EXPORT vtkCatadioptricSceneRenderer : public vtkObject
 {
 public:
   static vtkCatadioptricSceneRenderer* New();

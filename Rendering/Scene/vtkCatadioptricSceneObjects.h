@@ -8,8 +8,8 @@
 #ifndef vtkCatadioptricSceneObjects_h
 #define vtkCatadioptricSceneObjects_h
 
-#include "CatadioptricARRenderingModule.h" // for export macro
-#include "vtkSmartPointer.h"               // for return values
+#include "CatadioptricARSceneModule.h" // for export macro
+#include "vtkSmartPointer.h"           // for return values
 
 #include <string> // for std::string
 
@@ -22,7 +22,7 @@ struct SceneObject;
 struct SceneRemesh;
 }
 
-class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricSceneObjects
+class CATADIOPTRICARSCENE_EXPORT vtkCatadioptricSceneObjects
 {
 public:
   /// The object's triangle mesh in world coordinates: read from its file (any of .ply .obj .stl

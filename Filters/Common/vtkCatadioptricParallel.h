@@ -19,12 +19,12 @@
 #ifndef vtkCatadioptricParallel_h
 #define vtkCatadioptricParallel_h
 
-#include "CatadioptricARFiltersModule.h" // export macro
+#include "CatadioptricARCommonModule.h" // export macro
 #include "vtkType.h"
 
 #include <type_traits>
 
-class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricParallel
+class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricParallel
 {
 public:
   /// Calls f(b, e) on disjoint ranges [b, e) covering [begin, end), each of at least `grain`

@@ -18,8 +18,8 @@
 #ifndef vtkCatadioptricMeshCheck_h
 #define vtkCatadioptricMeshCheck_h
 
-#include "CatadioptricARFiltersModule.h" // for export macro
-#include "vtkType.h"                     // for vtkIdType
+#include "CatadioptricARCommonModule.h" // for export macro
+#include "vtkType.h"                    // for vtkIdType
 
 #include <string> // for std::string
 
@@ -27,7 +27,7 @@ class vtkCellArray;
 class vtkDataArray;
 class vtkPolyData;
 
-class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricMeshCheck
+class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricMeshCheck
 {
 public:
   /// True when every cell of `mesh` (vertices, lines, polygons, strips) names points that exist

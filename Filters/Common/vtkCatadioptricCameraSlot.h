@@ -10,15 +10,15 @@
 #ifndef vtkCatadioptricCameraSlot_h
 #define vtkCatadioptricCameraSlot_h
 
-#include "CatadioptricARFiltersModule.h" // for export macro
-#include "vtkSmartPointer.h"             // for members
-#include "vtkType.h"                     // for vtkMTimeType
+#include "CatadioptricARCommonModule.h" // for export macro
+#include "vtkSmartPointer.h"            // for members
+#include "vtkType.h"                    // for vtkMTimeType
 
 #include <string> // for members
 
 class vtkCatadioptricCamera;
 
-class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricCameraSlot
+class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricCameraSlot
 {
 public:
   vtkCatadioptricCameraSlot();

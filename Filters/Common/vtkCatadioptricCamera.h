@@ -17,7 +17,7 @@
 #ifndef vtkCatadioptricCamera_h
 #define vtkCatadioptricCamera_h
 
-#include "CatadioptricARFiltersModule.h" // for export macro
+#include "CatadioptricARCommonModule.h" // for export macro
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for member
 
@@ -33,7 +33,7 @@ namespace catar
 struct CameraModel;
 }
 
-class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricCamera : public vtkObject
+class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricCamera : public vtkObject
 {
 public:
   static vtkCatadioptricCamera* New();

@@ -10,9 +10,9 @@
 #ifndef vtkCatadioptricLightingSupport_h
 #define vtkCatadioptricLightingSupport_h
 
-#include "CatadioptricARFiltersModule.h" // for export macro
-#include "Lighting.h"                    // for catar::LightSource, catar::Material
-#include "ShadeBatch.h"                  // for catar::ShadingMaterial
+#include "CatadioptricARCommonModule.h" // for export macro
+#include "Lighting.h"                   // for catar::LightSource, catar::Material
+#include "ShadeBatch.h"                 // for catar::ShadingMaterial
 
 #include <string> // for std::string
 #include <vector> // for std::vector
@@ -26,7 +26,7 @@ class vtkLightCollection;
 class vtkPolyData;
 class vtkProperty;
 
-class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricLightingSupport
+class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricLightingSupport
 {
 public:
   /// The lights that are switched on: not positional = directional; positional with

@@ -10,13 +10,13 @@
 #ifndef vtkCatadioptricColorArray_h
 #define vtkCatadioptricColorArray_h
 
-#include "CatadioptricARFiltersModule.h" // for export macro
-#include "vtkType.h"                     // for vtkIdType
+#include "CatadioptricARCommonModule.h" // for export macro
+#include "vtkType.h"                    // for vtkIdType
 
 class vtkDataArray;
 class vtkPolyData;
 
-class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricColorArray
+class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricColorArray
 {
 public:
   /// Finds `name` (may be null or empty: no array) in `mesh`; `solid` is RGBA in [0,1].
