@@ -20,9 +20,27 @@ int vtkCatadioptricPointSetSurface::FillInputPortInformation(int, vtkInformation
   return 1;
 }
 
+namespace
+{
+// Forwards the construction's progress to the filter's, and the filter's AbortExecute flag
+// (ParaView's abort button, or an observer of the progress event) to it.
+void ReportProgress(double fraction, void* clientData)
+{
+  static_cast<vtkCatadioptricPointSetSurface*>(clientData)->UpdateProgress(0.1 + 0.8 * fraction);
+}
+
+bool StopRequested(void* clientData)
+{
+  return static_cast<vtkCatadioptricPointSetSurface*>(clientData)->GetAbortExecute() != 0;
+}
+} // namespace
+
 int vtkCatadioptricPointSetSurface::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // An abort asked during an earlier execution is spent (VTK 9.2's executives leave the flag
+  // set); set directly, as SetAbortExecute would mark the filter modified.
+  this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (!input || !output)
@@ -39,17 +57,26 @@ int vtkCatadioptricPointSetSurface::RequestData(
   options.method = static_cast<catar::mesh::PointSetMethod>(this->Method);
   options.radiusRatioBound = this->RadiusRatioBound;
   options.beta = this->Beta;
+  options.progress = &ReportProgress;
+  options.stop = &StopRequested;
+  options.progressData = this;
   this->UpdateProgress(0.1);
   const catar::mesh::PointSetResult result = catar::mesh::SurfaceFromPoints(points, options);
   for (const std::string& w : result.warnings)
   {
     vtkWarningMacro(<< w);
   }
+  if (!result.ok && result.error == catar::mesh::kAbortedError)
+  {
+    output->Initialize(); // aborted (AbortExecute): an empty output, as VTK's filters leave
+    return 1;
+  }
   if (!result.ok)
   {
     vtkErrorMacro("No surface from " << points.size() << " points: " << result.error);
     return 0;
   }
+  this->UpdateProgress(0.9);
   vtkCatadioptricMeshConversion::FromTriangleMesh(result.mesh, nullptr, output);
   output->GetFieldData()->PassData(input->GetFieldData());
   this->UpdateProgress(1.0);

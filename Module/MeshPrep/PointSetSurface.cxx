@@ -259,6 +259,21 @@ void OrientOpenSurface(SurfaceMesh& surface)
   surface.remove_property_map(component);
 }
 
+/// Reports progress; false when the caller asked to stop (the error is then kAbortedError).
+bool Step(const PointSetOptions& options, double fraction, PointSetResult& result)
+{
+  if (options.progress)
+  {
+    options.progress(fraction, options.progressData);
+  }
+  if (options.stop && options.stop(options.progressData))
+  {
+    result.error = kAbortedError;
+    return false;
+  }
+  return true;
+}
+
 /// A surface through the points by CGAL's advancing front reconstruction, consistently oriented.
 bool AdvancingFrontSurface(
   const CleanPoints& clean, const PointSetOptions& options, PointSetResult& result)
@@ -280,6 +295,10 @@ bool AdvancingFrontSurface(
   if (facets.empty())
   {
     result.error = "the advancing front reconstruction produced no triangles";
+    return false;
+  }
+  if (!Step(options, 0.7, result))
+  {
     return false;
   }
 
@@ -304,6 +323,10 @@ bool AdvancingFrontSurface(
   }
   SurfaceMesh surface;
   PMP::polygon_soup_to_polygon_mesh(soupPoints, polygons, surface);
+  if (!Step(options, 0.8, result))
+  {
+    return false;
+  }
 
   result.closed = CGAL::is_closed(surface);
   if (result.closed)
@@ -357,7 +380,7 @@ PointSetResult SurfaceFromPoints(const std::vector<Vec3>& points, const PointSet
       return result;
     }
     result.error = CheckSpansSpace(clean.points);
-    if (!result.error.empty())
+    if (!result.error.empty() || !Step(options, 0.1, result))
     {
       return result;
     }
@@ -375,6 +398,7 @@ PointSetResult SurfaceFromPoints(const std::vector<Vec3>& points, const PointSet
           "unknown point set method " + std::to_string(static_cast<int>(options.method));
         break;
     }
+    result.ok = result.ok && Step(options, 1.0, result);
   }
   catch (const std::exception& e)
   {

@@ -26,6 +26,11 @@ struct PointSetOptions
   /// radius_ratio_bound), and the beta angle (radians) controlling sharp turns.
   double radiusRatioBound = 5.0;
   double beta = 0.52;
+  /// Progress between the stages (cleaning, the CGAL construction, orientation, extraction: CGAL
+  /// runs each as one step); stop is asked at each and true ends in error kAbortedError.
+  ProgressFunction progress = nullptr;
+  StopFunction stop = nullptr;
+  void* progressData = nullptr;
 };
 
 struct PointSetResult

@@ -33,6 +33,16 @@
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
+// OpenMesh appends a property value as T(), and VectorT's default constructor leaves its numbers
+// uninitialised: growing the points and normals copied indeterminate values (GCC's
+// -Wmaybe-uninitialized said so). This mesh's vectors start at zero instead; every one is
+// written before it is read, so results are unchanged.
+template<>
+inline void OpenMesh::PropertyT<OpenMesh::Vec3d>::push_back()
+{
+  this->data_.push_back(OpenMesh::Vec3d(0.0, 0.0, 0.0));
+}
+
 #include <algorithm>
 #include <array>
 #include <cmath>

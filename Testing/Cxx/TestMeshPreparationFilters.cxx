@@ -29,6 +29,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <set>
 #include <string>
 
@@ -330,6 +331,47 @@ TEST(vtkCatadioptricRemesher, ProgressAndAbort)
     remesher->Update();
     EXPECT_EQ(errors->Count, 0) << errors->Last;
     EXPECT_GT(remesher->GetOutput()->GetNumberOfPolys(), 2 * box->GetNumberOfCells());
+    EXPECT_GE(abort->Last, 0.9); // the whole way this time
+  }
+}
+
+// The same for the surface from points: progress between its stages, an abort honoured at the
+// next one (empty output, no error), then a whole run. Both methods.
+TEST(vtkCatadioptricPointSetSurface, ProgressAndAbort)
+{
+  // Points on a sphere, enough for the advancing front.
+  vtkNew<vtkPoints> points;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int i = 0; i < 2000; ++i)
+  {
+    double p[3] = { g(rng), g(rng), g(rng) };
+    vtkMath::Normalize(p);
+    points->InsertNextPoint(p);
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  for (int method : { vtkCatadioptricPointSetSurface::CONVEX_HULL,
+         vtkCatadioptricPointSetSurface::ADVANCING_FRONT })
+  {
+    vtkNew<vtkCatadioptricPointSetSurface> surface;
+    surface->SetInputData(cloud);
+    surface->SetMethod(method);
+    vtkNew<AbortAfter> abort;
+    abort->Threshold = 0.05;
+    surface->AddObserver(vtkCommand::ProgressEvent, abort);
+    vtkNew<catar_test::ErrorCounter> errors;
+    errors->Watch(surface);
+    surface->Update();
+    EXPECT_EQ(errors->Count, 0) << errors->Last;
+    EXPECT_EQ(surface->GetOutput()->GetNumberOfPolys(), 0) << "method " << method;
+    EXPECT_LT(abort->Last, 0.5) << "it went on after the abort";
+    abort->Enabled = false;
+    abort->Last = 0.0;
+    surface->Modified();
+    surface->Update();
+    EXPECT_EQ(errors->Count, 0) << errors->Last;
+    EXPECT_GT(surface->GetOutput()->GetNumberOfPolys(), 1000) << "method " << method;
     EXPECT_GE(abort->Last, 0.9); // the whole way this time
   }
 }
