@@ -187,70 +187,23 @@ int vtkCatadioptricCompositor::RequestData(
       return 0;
     }
   }
-  int frameComponents = 0;
-  if (frame)
+  const int frameComponents = this->CheckFrame(frame, width, height);
+  if (frameComponents < 0)
   {
-    int dims[3];
-    frame->GetDimensions(dims);
-    vtkDataArray* scalars = frame->GetPointData()->GetScalars();
-    if (!scalars || scalars->GetDataType() != VTK_UNSIGNED_CHAR || dims[2] != 1)
-    {
-      vtkErrorMacro("The frame must be a 2D image of unsigned char scalars.");
-      return 0;
-    }
-    frameComponents = scalars->GetNumberOfComponents();
-    if (frameComponents < 1 || frameComponents > 4)
-    {
-      vtkErrorMacro("The frame must have 1 to 4 components, not " << frameComponents << ".");
-      return 0;
-    }
-    if (width != 0 && (dims[0] != width || dims[1] != height))
-    {
-      vtkErrorMacro("The frame is " << dims[0] << "x" << dims[1] << " but the camera image is "
-                                    << width << "x" << height << ".");
-      return 0;
-    }
-    width = dims[0];
-    height = dims[1];
-  }
-  if (this->ImageSize[0] > 0 && this->ImageSize[1] > 0 && !frame)
-  {
-    if (width != 0 && (this->ImageSize[0] != width || this->ImageSize[1] != height))
-    {
-      vtkErrorMacro("ImageSize " << this->ImageSize[0] << "x" << this->ImageSize[1]
-                                 << " differs from the camera image " << width << "x" << height
-                                 << ".");
-      return 0;
-    }
-    width = this->ImageSize[0];
-    height = this->ImageSize[1];
-  }
-  if (width <= 0 || height <= 0)
-  {
-    vtkErrorMacro("No image size: connect a frame, a projected mesh, or set ImageSize.");
     return 0;
   }
-  if (width > catar::kMaxImageSide || height > catar::kMaxImageSide ||
-    static_cast<long long>(width) * height > catar::kMaxImagePixels)
+  if (frame)
   {
-    vtkErrorMacro("The image size " << width << "x" << height << " is over the limit of "
-                                    << catar::kMaxImageSide << " pixels a side and "
-                                    << catar::kMaxImagePixels << " pixels.");
+    width = frame->GetDimensions()[0];
+    height = frame->GetDimensions()[1];
+  }
+  if (!this->ResolveImageSize(frame != nullptr, width, height))
+  {
     return 0;
   }
   this->LastSize[0] = width;
   this->LastSize[1] = height;
-
-  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
-  output->SetOrigin(0, 0, 0);
-  output->SetSpacing(1, 1, 1);
-  // vtkImageData keeps its scalars through the pipeline's PrepareForNewData and AllocateScalars
-  // reuses them when no one else holds them: the image is not allocated again every frame.
-  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
-  vtkUnsignedCharArray* outScalars =
-    vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
-  outScalars->SetName(vtkCatadioptricArrayNames::RGBA);
-  unsigned char* out = outScalars->GetPointer(0);
+  unsigned char* out = this->AllocateOutput(output, width, height);
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
 
   // Background, written band by band with the triangles: the frame (grey and RGB widened to

@@ -1,11 +1,17 @@
 #include "vtkCatadioptricImageSink.h"
 
+#include "CameraModel.h" // kMaxImageSide, kMaxImagePixels
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricImageSupport.h"
+
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
 
 vtkCatadioptricImageSink::vtkCatadioptricImageSink()
 {
@@ -71,4 +77,77 @@ void vtkCatadioptricImageSink::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImageSize: " << this->ImageSize[0] << " " << this->ImageSize[1] << "\n";
   os << indent << "RepeatTextures: " << (this->RepeatTextures ? "On" : "Off") << "\n";
   os << indent << "OutputVisibleTriangle: " << (this->OutputVisibleTriangle ? "On" : "Off") << "\n";
+}
+
+int vtkCatadioptricImageSink::CheckFrame(vtkImageData* frame, int width, int height)
+{
+  if (!frame)
+  {
+    return 0;
+  }
+  int dims[3];
+  frame->GetDimensions(dims);
+  vtkDataArray* scalars = frame->GetPointData()->GetScalars();
+  if (!scalars || scalars->GetDataType() != VTK_UNSIGNED_CHAR || dims[2] != 1)
+  {
+    vtkErrorMacro("The frame must be a 2D image of unsigned char scalars.");
+    return -1;
+  }
+  const int components = scalars->GetNumberOfComponents();
+  if (components < 1 || components > 4)
+  {
+    vtkErrorMacro("The frame must have 1 to 4 components, not " << components << ".");
+    return -1;
+  }
+  if (width > 0 && (dims[0] != width || dims[1] != height))
+  {
+    vtkErrorMacro("The frame is " << dims[0] << "x" << dims[1] << " but the camera image is "
+                                  << width << "x" << height << ".");
+    return -1;
+  }
+  return components;
+}
+
+bool vtkCatadioptricImageSink::ResolveImageSize(bool haveFrame, int& width, int& height)
+{
+  if (!haveFrame && this->ImageSize[0] > 0 && this->ImageSize[1] > 0)
+  {
+    if (width > 0 && (this->ImageSize[0] != width || this->ImageSize[1] != height))
+    {
+      vtkErrorMacro("ImageSize " << this->ImageSize[0] << "x" << this->ImageSize[1]
+                                 << " differs from the camera image " << width << "x" << height
+                                 << ".");
+      return false;
+    }
+    width = this->ImageSize[0];
+    height = this->ImageSize[1];
+  }
+  if (width <= 0 || height <= 0)
+  {
+    vtkErrorMacro("No image size: connect a frame, a projected mesh, or set ImageSize.");
+    return false;
+  }
+  if (width > catar::kMaxImageSide || height > catar::kMaxImageSide ||
+    static_cast<long long>(width) * height > catar::kMaxImagePixels)
+  {
+    vtkErrorMacro("The image size " << width << "x" << height << " is over the limit of "
+                                    << catar::kMaxImageSide << " pixels a side and "
+                                    << catar::kMaxImagePixels << " pixels.");
+    return false;
+  }
+  return true;
+}
+
+unsigned char* vtkCatadioptricImageSink::AllocateOutput(vtkImageData* output, int width, int height)
+{
+  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
+  output->SetOrigin(0, 0, 0);
+  output->SetSpacing(1, 1, 1);
+  // vtkImageData keeps its scalars through the pipeline's PrepareForNewData and AllocateScalars
+  // reuses them when no one else holds them: the image is not allocated again every frame.
+  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  vtkUnsignedCharArray* scalars =
+    vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
+  scalars->SetName(vtkCatadioptricArrayNames::RGBA);
+  return scalars->GetPointer(0);
 }

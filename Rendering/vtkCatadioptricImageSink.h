@@ -20,6 +20,8 @@
 #include "CatadioptricARRenderingModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
+class vtkImageData;
+
 class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricImageSink : public vtkImageAlgorithm
 {
 public:
@@ -97,6 +99,19 @@ protected:
   /// The image size announced when no frame is connected (RequestInformation; RequestData sets
   /// the real extent). (0, 0) announces a single pixel.
   virtual void ImageSizeWithoutFrame(vtkInformationVector** inputVector, int size[2]) = 0;
+
+  ///@{
+  /// For RequestData. CheckFrame: the frame's component count (0 when none is connected), or -1
+  /// after reporting why it cannot be used (not a 2D unsigned char image of 1 to 4 components, or
+  /// not width x height when width > 0). ResolveImageSize: without a frame, ImageSize (when set)
+  /// becomes the size; false after reporting an ImageSize that contradicts a known size (width >
+  /// 0), no size at all, or one over the limit. AllocateOutput: `output` as a
+  /// width x height RGBA image (its scalars reused from the last run when no one else holds them),
+  /// its bytes.
+  int CheckFrame(vtkImageData* frame, int width, int height);
+  bool ResolveImageSize(bool haveFrame, int& width, int& height);
+  unsigned char* AllocateOutput(vtkImageData* output, int width, int height);
+  ///@}
 
   double Color[3] = { 0.8, 0.8, 0.8 };
   double Opacity = 1.0;

@@ -165,6 +165,190 @@ void vtkCatadioptricRayTracer::ImageSizeWithoutFrame(vtkInformationVector**, int
   }
 }
 
+namespace
+{
+// What the tracer needs of a mesh besides the mesh and its lighting filter.
+struct MeshSettings
+{
+  const double* color;        // the sink's Color, for meshes without colours and lighting
+  double opacity;             // the sink's Opacity
+  const char* colorArrayName; // the sink's ColorArrayName, for meshes without lighting
+  bool visibleTriangleIds;    // OutputVisibleTriangle
+  std::size_t textureCount;   // textures connected
+};
+
+// The lights of the scene: the first lit mesh's lighting filter's; shadows when any asks.
+struct SceneLighting
+{
+  std::vector<catar::LightSource> lights;
+  catar::Vec3 globalAmbient = catar::Vec3::Zero();
+  bool haveLights = false;
+  bool shadows = false;
+};
+
+// The tracer's mesh of a VTK mesh: triangles (polygons as fans), colours, normals, texture
+// coordinates, lighting. Returns "" or what is wrong, to follow "Mesh <index>".
+std::string MakeTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
+  const MeshSettings& in, catar::TraceMesh& tm, SceneLighting& scene)
+{
+  std::string meshError;
+  if (!vtkCatadioptricMeshCheck::Check(mesh, meshError))
+  {
+    return ": " + meshError;
+  }
+  if (in.visibleTriangleIds && mesh->GetNumberOfCells() >= (vtkIdType(1) << 32))
+  {
+    return " has " + std::to_string(mesh->GetNumberOfCells()) +
+      " cells: VisibleTriangle ids hold cell ids below 2^32.";
+  }
+  const vtkIdType nPts = mesh->GetNumberOfPoints();
+  tm.points.resize(nPts);
+  for (vtkIdType i = 0; i < nPts; ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    tm.points[i] = V3(p);
+  }
+  vtkDataArray* original = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
+  const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+  std::vector<vtkIdType> triangleCells;
+  vtkCellArray* polys = mesh->GetPolys();
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+  {
+    polys->GetCellAtId(c, ids);
+    catar::PolygonTriangles(ids->GetPointer(0), static_cast<std::size_t>(ids->GetNumberOfIds()),
+      [&](vtkIdType a, vtkIdType b, vtkIdType d) {
+        tm.triangles.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+          static_cast<std::uint32_t>(d) });
+        triangleCells.push_back(firstCell + c);
+        tm.triangleIds.push_back(original
+            ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
+            : static_cast<catar::RasterId>(firstCell + c));
+      });
+  }
+
+  const char* colorName = lighting ? lighting->GetInputColorArrayName() : in.colorArrayName;
+  float solid[4] = { static_cast<float>(in.color[0]), static_cast<float>(in.color[1]),
+    static_cast<float>(in.color[2]), 1.0f };
+  if (lighting)
+  {
+    const double* d = lighting->GetProperty()->GetDiffuseColor();
+    for (int k = 0; k < 3; ++k)
+    {
+      solid[k] = static_cast<float>(d[k]);
+    }
+  }
+  const vtkCatadioptricColorArray colors(mesh, colorName, solid);
+  tm.color = catar::Vec3(solid[0], solid[1], solid[2]);
+  if (colors.HasArray())
+  {
+    tm.colorSource = colors.IsPerPoint() ? catar::TraceMesh::ColorSource::Point
+                                         : catar::TraceMesh::ColorSource::Cell;
+    const std::size_t n = colors.IsPerPoint() ? tm.points.size() : tm.triangles.size();
+    tm.colors.resize(4 * n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (colors.IsPerPoint())
+      {
+        colors.Get(static_cast<vtkIdType>(i), 0, &tm.colors[4 * i]);
+      }
+      else
+      {
+        colors.Get(0, triangleCells[i], &tm.colors[4 * i]);
+      }
+    }
+  }
+  tm.opacity = in.opacity;
+  if (lighting && lighting->GetShadingMode() != vtkCatadioptricLighting::NONE)
+  {
+    vtkProperty* prop = lighting->GetProperty();
+    tm.shading = lighting->GetShadingMode() == vtkCatadioptricLighting::FLAT
+      ? catar::TraceMesh::Shading::Flat
+      : catar::TraceMesh::Shading::Smooth;
+    tm.material = vtkCatadioptricLightingSupport::ConvertProperty(prop, lighting->GetEmission());
+    tm.ambientFactor = prop->GetAmbient();
+    tm.diffuseFactor = prop->GetDiffuse();
+    tm.opacity *= prop->GetOpacity();
+    tm.twoSided = lighting->GetTwoSidedLighting();
+    if (tm.shading == catar::TraceMesh::Shading::Smooth)
+    {
+      vtkDataArray* normals = mesh->GetPointData()->GetNormals();
+      if (normals && normals->GetNumberOfComponents() == 3)
+      {
+        tm.normals.resize(nPts);
+        std::vector<catar::Vec3> geometric; // for normals of zero length, NaN or Inf
+        for (vtkIdType i = 0; i < nPts; ++i)
+        {
+          tm.normals[i] = V3(normals->GetTuple3(i)).normalized();
+          if (!(tm.normals[i].squaredNorm() > 0.0))
+          {
+            if (geometric.empty())
+            {
+              geometric = vtkCatadioptricLightingSupport::VertexNormals(mesh);
+            }
+            tm.normals[i] = geometric[i];
+          }
+        }
+      }
+      else
+      {
+        tm.normals = vtkCatadioptricLightingSupport::VertexNormals(mesh);
+      }
+    }
+    if (!scene.haveLights)
+    {
+      scene.lights = vtkCatadioptricLightingSupport::ConvertLights(lighting->GetLights());
+      scene.globalAmbient = V3(lighting->GetGlobalAmbient());
+      scene.haveLights = true;
+    }
+    scene.shadows = scene.shadows || lighting->GetShadows();
+    const std::string lightingError = catar::ValidateLighting(scene.lights, tm.material,
+      scene.globalAmbient, tm.ambientFactor, tm.diffuseFactor, tm.opacity);
+    if (!lightingError.empty())
+    {
+      return ": cannot shade: " + lightingError + ".";
+    }
+  }
+  else
+  {
+    tm.shading = catar::TraceMesh::Shading::None;
+    if (lighting)
+    {
+      tm.opacity *= lighting->GetProperty()->GetOpacity();
+    }
+  }
+  if (in.textureCount > 0)
+  {
+    if (vtkDataArray* tcoords = vtkCatadioptricImageSupport::TextureCoordinates(mesh))
+    {
+      int texture = 0;
+      std::string textureError;
+      if (!vtkCatadioptricImageSupport::TextureIndex(mesh, texture, textureError))
+      {
+        return ": " + textureError;
+      }
+      if (texture >= static_cast<int>(in.textureCount))
+      {
+        return " asks for texture " + std::to_string(texture) + " but " +
+          std::to_string(in.textureCount) + " are connected.";
+      }
+      if (texture >= 0)
+      {
+        tm.texture = texture;
+        tm.tcoords.resize(2 * static_cast<std::size_t>(nPts));
+        for (vtkIdType i = 0; i < nPts; ++i)
+        {
+          tm.tcoords[2 * i] = static_cast<float>(tcoords->GetComponent(i, 0));
+          tm.tcoords[2 * i + 1] = static_cast<float>(tcoords->GetComponent(i, 1));
+        }
+      }
+    }
+  }
+  return std::string();
+}
+} // namespace
+
 int vtkCatadioptricRayTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -188,41 +372,13 @@ int vtkCatadioptricRayTracer::RequestData(
   // Frame or background, as the compositor.
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkImageData* frame = vtkImageData::GetData(inputVector[0]);
-  int frameComponents = 0;
-  if (frame)
+  const int frameComponents = this->CheckFrame(frame, width, height);
+  int size[2] = { width, height }; // the camera's: ImageSize may only agree with it
+  if (frameComponents < 0 || !this->ResolveImageSize(frame != nullptr, size[0], size[1]))
   {
-    int dims[3];
-    frame->GetDimensions(dims);
-    vtkDataArray* scalars = frame->GetPointData()->GetScalars();
-    if (!scalars || scalars->GetDataType() != VTK_UNSIGNED_CHAR || dims[2] != 1 ||
-      scalars->GetNumberOfComponents() < 1 || scalars->GetNumberOfComponents() > 4)
-    {
-      vtkErrorMacro("The frame must be a 2D image of unsigned char scalars, 1 to 4 components.");
-      return 0;
-    }
-    if (dims[0] != width || dims[1] != height)
-    {
-      vtkErrorMacro("The frame is " << dims[0] << "x" << dims[1] << " but the camera image is "
-                                    << width << "x" << height << ".");
-      return 0;
-    }
-    frameComponents = scalars->GetNumberOfComponents();
-  }
-  else if (this->ImageSize[0] > 0 && (this->ImageSize[0] != width || this->ImageSize[1] != height))
-  {
-    vtkErrorMacro("ImageSize " << this->ImageSize[0] << "x" << this->ImageSize[1]
-                               << " differs from the camera image " << width << "x" << height
-                               << ".");
     return 0;
   }
-  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
-  output->SetOrigin(0, 0, 0);
-  output->SetSpacing(1, 1, 1);
-  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
-  vtkUnsignedCharArray* outScalars =
-    vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
-  outScalars->SetName(vtkCatadioptricArrayNames::RGBA);
-  unsigned char* out = outScalars->GetPointer(0);
+  unsigned char* out = this->AllocateOutput(output, width, height);
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
   if (frame)
   {
@@ -245,189 +401,31 @@ int vtkCatadioptricRayTracer::RequestData(
     return 0;
   }
 
-  // Meshes: triangles (polygons as fans), colours, normals, texture coordinates, lighting.
+  // Meshes.
   std::vector<catar::TraceMesh> meshes;
-  std::vector<catar::LightSource> lights;
-  catar::Vec3 globalAmbient = catar::Vec3::Zero();
-  bool haveLights = false;
-  bool shadows = false;
+  SceneLighting sceneLighting;
+  const MeshSettings settings{ this->Color, this->Opacity, this->ColorArrayName,
+    this->OutputVisibleTriangle, textures.size() };
   const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
   for (int m = 0; m < nMeshes; ++m)
   {
-    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
-    catar::TraceMesh tm;
-    if (!mesh)
+    meshes.emplace_back();
+    if (vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m))
     {
-      meshes.push_back(tm);
-      continue;
-    }
-    std::string meshError;
-    if (!vtkCatadioptricMeshCheck::Check(mesh, meshError))
-    {
-      vtkErrorMacro("Mesh " << m << ": " << meshError);
-      return 0;
-    }
-    if (this->OutputVisibleTriangle && mesh->GetNumberOfCells() >= (vtkIdType(1) << 32))
-    {
-      vtkErrorMacro("Mesh " << m << " has " << mesh->GetNumberOfCells()
-                            << " cells: VisibleTriangle ids hold cell ids below 2^32.");
-      return 0;
-    }
-    const vtkIdType nPts = mesh->GetNumberOfPoints();
-    tm.points.resize(nPts);
-    for (vtkIdType i = 0; i < nPts; ++i)
-    {
-      double p[3];
-      mesh->GetPoint(i, p);
-      tm.points[i] = V3(p);
-    }
-    vtkDataArray* original =
-      mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
-    const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
-    std::vector<vtkIdType> triangleCells;
-    vtkCellArray* polys = mesh->GetPolys();
-    vtkNew<vtkIdList> ids;
-    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
-    {
-      polys->GetCellAtId(c, ids);
-      catar::PolygonTriangles(ids->GetPointer(0), static_cast<std::size_t>(ids->GetNumberOfIds()),
-        [&](vtkIdType a, vtkIdType b, vtkIdType d) {
-          tm.triangles.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
-            static_cast<std::uint32_t>(d) });
-          triangleCells.push_back(firstCell + c);
-          tm.triangleIds.push_back(original
-              ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
-              : static_cast<catar::RasterId>(firstCell + c));
-        });
-    }
-
-    vtkCatadioptricLighting* lighting = this->GetMeshLighting(m);
-    const char* colorName = lighting ? lighting->GetInputColorArrayName() : this->ColorArrayName;
-    float solid[4] = { static_cast<float>(this->Color[0]), static_cast<float>(this->Color[1]),
-      static_cast<float>(this->Color[2]), 1.0f };
-    if (lighting)
-    {
-      const double* d = lighting->GetProperty()->GetDiffuseColor();
-      for (int k = 0; k < 3; ++k)
+      const std::string error =
+        MakeTraceMesh(mesh, this->GetMeshLighting(m), settings, meshes.back(), sceneLighting);
+      if (!error.empty())
       {
-        solid[k] = static_cast<float>(d[k]);
-      }
-    }
-    const vtkCatadioptricColorArray colors(mesh, colorName, solid);
-    tm.color = catar::Vec3(solid[0], solid[1], solid[2]);
-    if (colors.HasArray())
-    {
-      tm.colorSource = colors.IsPerPoint() ? catar::TraceMesh::ColorSource::Point
-                                           : catar::TraceMesh::ColorSource::Cell;
-      const std::size_t n = colors.IsPerPoint() ? tm.points.size() : tm.triangles.size();
-      tm.colors.resize(4 * n);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        if (colors.IsPerPoint())
-        {
-          colors.Get(static_cast<vtkIdType>(i), 0, &tm.colors[4 * i]);
-        }
-        else
-        {
-          colors.Get(0, triangleCells[i], &tm.colors[4 * i]);
-        }
-      }
-    }
-    tm.opacity = this->Opacity;
-    if (lighting && lighting->GetShadingMode() != vtkCatadioptricLighting::NONE)
-    {
-      vtkProperty* prop = lighting->GetProperty();
-      tm.shading = lighting->GetShadingMode() == vtkCatadioptricLighting::FLAT
-        ? catar::TraceMesh::Shading::Flat
-        : catar::TraceMesh::Shading::Smooth;
-      tm.material = vtkCatadioptricLightingSupport::ConvertProperty(prop, lighting->GetEmission());
-      tm.ambientFactor = prop->GetAmbient();
-      tm.diffuseFactor = prop->GetDiffuse();
-      tm.opacity *= prop->GetOpacity();
-      tm.twoSided = lighting->GetTwoSidedLighting();
-      if (tm.shading == catar::TraceMesh::Shading::Smooth)
-      {
-        vtkDataArray* normals = mesh->GetPointData()->GetNormals();
-        if (normals && normals->GetNumberOfComponents() == 3)
-        {
-          tm.normals.resize(nPts);
-          std::vector<catar::Vec3> geometric; // for normals of zero length, NaN or Inf
-          for (vtkIdType i = 0; i < nPts; ++i)
-          {
-            tm.normals[i] = V3(normals->GetTuple3(i)).normalized();
-            if (!(tm.normals[i].squaredNorm() > 0.0))
-            {
-              if (geometric.empty())
-              {
-                geometric = vtkCatadioptricLightingSupport::VertexNormals(mesh);
-              }
-              tm.normals[i] = geometric[i];
-            }
-          }
-        }
-        else
-        {
-          tm.normals = vtkCatadioptricLightingSupport::VertexNormals(mesh);
-        }
-      }
-      if (!haveLights)
-      {
-        lights = vtkCatadioptricLightingSupport::ConvertLights(lighting->GetLights());
-        globalAmbient = V3(lighting->GetGlobalAmbient());
-        haveLights = true;
-      }
-      shadows = shadows || lighting->GetShadows();
-      const std::string lightingError = catar::ValidateLighting(
-        lights, tm.material, globalAmbient, tm.ambientFactor, tm.diffuseFactor, tm.opacity);
-      if (!lightingError.empty())
-      {
-        vtkErrorMacro("Mesh " << m << ": cannot shade: " << lightingError << ".");
+        vtkErrorMacro("Mesh " << m << error);
         return 0;
       }
     }
-    else
-    {
-      tm.shading = catar::TraceMesh::Shading::None;
-      if (lighting)
-      {
-        tm.opacity *= lighting->GetProperty()->GetOpacity();
-      }
-    }
-    if (!textures.empty())
-    {
-      if (vtkDataArray* tcoords = vtkCatadioptricImageSupport::TextureCoordinates(mesh))
-      {
-        int texture = 0;
-        std::string textureError;
-        if (!vtkCatadioptricImageSupport::TextureIndex(mesh, texture, textureError))
-        {
-          vtkErrorMacro("Mesh " << m << ": " << textureError);
-          return 0;
-        }
-        if (texture >= static_cast<int>(textures.size()))
-        {
-          vtkErrorMacro("Mesh " << m << " asks for texture " << texture << " but "
-                                << textures.size() << " are connected.");
-          return 0;
-        }
-        if (texture >= 0)
-        {
-          tm.texture = texture;
-          tm.tcoords.resize(2 * static_cast<std::size_t>(nPts));
-          for (vtkIdType i = 0; i < nPts; ++i)
-          {
-            tm.tcoords[2 * i] = static_cast<float>(tcoords->GetComponent(i, 0));
-            tm.tcoords[2 * i + 1] = static_cast<float>(tcoords->GetComponent(i, 1));
-          }
-        }
-      }
-    }
-    meshes.push_back(std::move(tm));
   }
   this->UpdateProgress(0.1);
 
   Internals& in = *this->Internal;
-  if (!in.Tracer.SetScene(meshes, textures, lights, globalAmbient, shadows))
+  if (!in.Tracer.SetScene(
+        meshes, textures, sceneLighting.lights, sceneLighting.globalAmbient, sceneLighting.shadows))
   {
     vtkErrorMacro("Cannot build the scene: " << in.Tracer.GetError());
     return 0;
