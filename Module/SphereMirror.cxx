@@ -53,7 +53,7 @@ inline auto CameraSees(T a, T c, T s)
     (an * an > lanes::Constant<T>(kGrazingCosine * kGrazingCosine) * (an * an + at * at));
 }
 
-// The coefficients of the reflection quartic of SphereProjection.h in u = tan(t / 2), highest
+// The coefficients of the reflection quartic of SphereMirror.h in u = tan(t / 2), highest
 // degree first.
 template<typename T>
 inline void QuarticCoefficients(T a, T bx, T by, T (&c)[5])

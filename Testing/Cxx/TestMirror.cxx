@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 using namespace catar;
 
@@ -120,4 +121,37 @@ TEST(CalibrationIO, MirrorIsKeyedByType)
     << error;
   EXPECT_FALSE(ParseCalibration(lens + R"("mirror": 3})", m, error));
   EXPECT_NE(error.find("missing map 'mirror' {type, center, radius}"), std::string::npos) << error;
+}
+
+TEST(Projector, BackProjectionOfManyPixelsIsOneAtATime)
+{
+  // Pixels over and beyond the image (hits, misses, outside, NaN), more than a batch: the batched
+  // call gives exactly what one call per pixel gives.
+  const CameraModel model = catar_test::DemoCameraModel();
+  const Projector projector(model);
+  std::vector<Vec2> pixels;
+  for (int y = -40; y < model.intrinsics.height + 40; y += 37)
+  {
+    for (int x = -40; x < model.intrinsics.width + 40; x += 29)
+    {
+      pixels.emplace_back(x + 0.25, y - 0.5);
+    }
+  }
+  pixels.emplace_back(std::numeric_limits<double>::quiet_NaN(), 3.0);
+  ASSERT_GT(pixels.size(), static_cast<std::size_t>(3 * Mirror::kMaxBatchSize));
+  std::vector<BackProjectedRay> many(pixels.size());
+  projector.BackProjectWorld(pixels.size(), pixels.data(), many.data());
+  int hits = 0, misses = 0;
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+  {
+    const BackProjectedRay one = projector.BackProjectWorld(pixels[i]);
+    ASSERT_EQ(many[i].status, one.status) << i;
+    EXPECT_EQ(many[i].mirrorPoint, one.mirrorPoint) << i;
+    EXPECT_EQ(many[i].direction, one.direction) << i;
+    hits += HasProjection(one.status) ? 1 : 0;
+    misses += one.status == ProjectionStatus::NoReflection ? 1 : 0;
+  }
+  EXPECT_GT(hits, 100);
+  EXPECT_GT(misses, 100);
+  EXPECT_EQ(many.back().status, ProjectionStatus::InvalidInput);
 }
