@@ -119,13 +119,7 @@ int vtkCatadioptricEnvironmentSource::RequestData(
   const int width = camera->GetImageWidth();
   const int height = camera->GetImageHeight();
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
-  output->SetOrigin(0, 0, 0);
-  output->SetSpacing(1, 1, 1);
-  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
-  vtkUnsignedCharArray* scalars =
-    vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
-  scalars->SetName(vtkCatadioptricArrayNames::RGBA);
+  unsigned char* bytes = vtkCatadioptricImageSupport::AllocateRGBA(output, width, height);
 
   const catar::Projector projector(camera->GetModel());
   catar::RoomEnvironment room;
@@ -143,7 +137,7 @@ int vtkCatadioptricEnvironmentSource::RequestData(
   view.width = width;
   view.height = height;
   view.rowStride = -4 * static_cast<std::ptrdiff_t>(width);
-  view.data = scalars->GetPointer(0) + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1);
+  view.data = bytes + 4 * static_cast<std::ptrdiff_t>(width) * (height - 1);
   const int samples = this->Samples;
   const bool panorama = this->Mode == PANORAMA;
   const catar::EquirectangularPanorama& image = this->Cache->Panorama;

@@ -140,14 +140,5 @@ bool vtkCatadioptricImageSink::ResolveImageSize(bool haveFrame, int& width, int&
 
 unsigned char* vtkCatadioptricImageSink::AllocateOutput(vtkImageData* output, int width, int height)
 {
-  output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
-  output->SetOrigin(0, 0, 0);
-  output->SetSpacing(1, 1, 1);
-  // vtkImageData keeps its scalars through the pipeline's PrepareForNewData and AllocateScalars
-  // reuses them when no one else holds them: the image is not allocated again every frame.
-  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
-  vtkUnsignedCharArray* scalars =
-    vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
-  scalars->SetName(vtkCatadioptricArrayNames::RGBA);
-  return scalars->GetPointer(0);
+  return vtkCatadioptricImageSupport::AllocateRGBA(output, width, height);
 }

@@ -39,6 +39,10 @@ public:
   /// Fills `n` RGBA pixels with a colour given in [0, 1] (clamped), in parallel.
   static void FillColor(const double rgba[4], vtkIdType n, unsigned char* out);
 
+  /// `output` as a width x height RGBA unsigned char image (scalars named RGBA; reused from the
+  /// last run when no one else holds them); returns its bytes.
+  static unsigned char* AllocateRGBA(vtkImageData* output, int width, int height);
+
   ///@{
   /// CopyFrame and FillColor for the pixels [begin, end) only, in the calling thread: for a sink
   /// that writes each part of its image, background first, in a parallel task of its own.

@@ -111,10 +111,9 @@ void BM_ForwardProjectionNearBatch(benchmark::State& state)
 }
 BENCHMARK(BM_ForwardProjectionNearBatch)->Arg(10)->Arg(100);
 
-void BM_BackProjection(benchmark::State& state)
+// Every 16th pixel of every 16th row.
+std::vector<Vec2> GridPixels(const CameraModel& model)
 {
-  const CameraModel model = DemoScene().camera;
-  const Projector proj(model);
   std::vector<Vec2> pixels;
   for (int y = 0; y < model.intrinsics.height; y += 16)
   {
@@ -123,6 +122,14 @@ void BM_BackProjection(benchmark::State& state)
       pixels.emplace_back(x, y);
     }
   }
+  return pixels;
+}
+
+void BM_BackProjection(benchmark::State& state)
+{
+  const CameraModel model = DemoScene().camera;
+  const Projector proj(model);
+  const std::vector<Vec2> pixels = GridPixels(model);
   for (auto _ : state)
   {
     for (const Vec2& px : pixels)
@@ -139,14 +146,7 @@ void BM_BackProjectionBatch(benchmark::State& state)
 {
   const CameraModel model = DemoScene().camera;
   const Projector proj(model);
-  std::vector<Vec2> pixels;
-  for (int y = 0; y < model.intrinsics.height; y += 16)
-  {
-    for (int x = 0; x < model.intrinsics.width; x += 16)
-    {
-      pixels.emplace_back(x, y);
-    }
-  }
+  const std::vector<Vec2> pixels = GridPixels(model);
   std::vector<BackProjectedRay> rays(pixels.size());
   for (auto _ : state)
   {
