@@ -87,6 +87,169 @@ bool HasDegenerateNormal(
   }
   return false;
 }
+// The inputs of the per-point (Gouraud) shading: the projection's arrays, the normals (read
+// through raw pointers where their type allows), base colours and materials.
+struct PointInputs
+{
+  const vtkCatadioptricPointReader& points;
+  vtkUnsignedCharArray* visibleBytes; // the projection's Visible as bytes, or null
+  vtkDataArray* visible;
+  const double* mirrorValues; // MirrorPoint as doubles, or null
+  vtkDataArray* mirror;
+  const float* normalFloats;                // given normals as floats, or null
+  const double* normalDoubles;              // given normals as doubles, or null
+  vtkDataArray* normalArray;                // given normals of another type
+  const std::vector<catar::Vec3>& normals;  // the mesh's own normals when none are given
+  const std::vector<catar::Vec3>* fallback; // for given normals of zero length, NaN or Inf
+  const std::vector<float>& pointBase;      // cell colours averaged at points, or empty
+  const vtkCatadioptricColorArray& base;
+  vtkDataArray* materialIndex;
+  const catar::PoseFrames& pose;
+};
+
+// RGBA of each of n points into out (4 bytes a point; invisible points 0): a batch per thread.
+void ShadePoints(const PointInputs& in, vtkIdType nPts, const catar::ShadeBatch::Settings& shading,
+  unsigned char* out)
+{
+  vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
+    catar::ShadeBatch batch(shading);
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      unsigned char* o = out + 4 * i;
+      if (in.visibleBytes ? in.visibleBytes->GetValue(i) == 0 : in.visible->GetComponent(i, 0) == 0)
+      {
+        std::fill(o, o + 4, 0);
+        continue;
+      }
+      double mp[3], nn[3];
+      if (in.mirrorValues)
+      {
+        std::copy(in.mirrorValues + 3 * i, in.mirrorValues + 3 * i + 3, mp);
+      }
+      else
+      {
+        in.mirror->GetTuple(i, mp);
+      }
+      const catar::Vec3 p = in.points(i);
+      catar::Vec3 n;
+      if (in.normalFloats)
+      {
+        n = catar::Vec3(
+          in.normalFloats[3 * i], in.normalFloats[3 * i + 1], in.normalFloats[3 * i + 2])
+              .normalized();
+      }
+      else if (in.normalDoubles)
+      {
+        n = V3(in.normalDoubles + 3 * i).normalized();
+      }
+      else if (in.normals.empty())
+      {
+        in.normalArray->GetTuple(i, nn);
+        n = V3(nn).normalized();
+      }
+      else
+      {
+        n = in.normals[i];
+      }
+      if (in.fallback && !(n.squaredNorm() > 0.0))
+      {
+        n = (*in.fallback)[i];
+      }
+      float rgba[4];
+      if (in.pointBase.empty())
+      {
+        in.base.Get(i, 0, rgba);
+      }
+      else
+      {
+        std::copy(&in.pointBase[4 * i], &in.pointBase[4 * i] + 4, rgba);
+      }
+      // The viewer: the reflection point, camera to world.
+      batch.Add(p, n, in.pose.ToWorld(V3(mp)), rgba, o,
+        in.materialIndex ? static_cast<int>(in.materialIndex->GetComponent(i, 0)) : -1);
+    }
+  });
+}
+
+// The inputs of the per-cell shading (FLAT: shaded at the centroid; NONE: the base colour).
+struct CellInputs
+{
+  const vtkCatadioptricPointReader& points;
+  vtkCellArray* polys;
+  vtkIdType first; // cell id of the first polygon
+  vtkUnsignedCharArray* visibleBytes;
+  vtkDataArray* visible;
+  vtkDataArray* centroidMirror;
+  const vtkCatadioptricColorArray& base;
+  vtkDataArray* materialIndex;
+  const std::vector<catar::ShadingMaterial>& materials;
+  double opacity;
+  bool flat;
+  const catar::PoseFrames& pose;
+};
+
+// RGBA of each polygon into out, at its cell id (4 bytes a cell): a batch per thread.
+void ShadeCells(
+  const CellInputs& in, const catar::ShadeBatch::Settings& shading, unsigned char* out)
+{
+  vtkCatadioptricParallel::For(
+    0, in.polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
+      catar::ShadeBatch batch(shading);
+      vtkNew<vtkIdList> scratch;
+      for (vtkIdType c = b; c < e; ++c)
+      {
+        const vtkIdType cellId = in.first + c;
+        if (in.visibleBytes ? in.visibleBytes->GetValue(cellId) == 0
+                            : in.visible->GetComponent(cellId, 0) == 0)
+        {
+          continue;
+        }
+        vtkIdType n = 0;
+        const vtkIdType* pts = nullptr;
+        in.polys->GetCellAtId(c, n, pts, scratch); // no copy when the ids are stored as vtkIdType
+        catar::Vec3 centroid = catar::Vec3::Zero();
+        catar::NewellNormal newell(in.points(pts[n - 1]));
+        for (vtkIdType k = 0; k < n; ++k)
+        {
+          const catar::Vec3 a = in.points(pts[k]);
+          centroid += a;
+          newell.Add(a);
+        }
+        centroid /= static_cast<double>(n);
+        const catar::Vec3& area = newell.Sum();
+        // Base colour: a cell colour, or the mean of the point colours.
+        float rgba[4] = { 0, 0, 0, 0 };
+        for (vtkIdType k = 0; k < (in.base.IsPerPoint() ? n : 1); ++k)
+        {
+          float v[4];
+          in.base.Get(pts[k], cellId, v);
+          for (int j = 0; j < 4; ++j)
+          {
+            rgba[j] += v[j] / (in.base.IsPerPoint() ? n : 1);
+          }
+        }
+        unsigned char* o = out + 4 * cellId;
+        // A cell's material is its first point's.
+        const int m =
+          in.materialIndex ? static_cast<int>(in.materialIndex->GetComponent(pts[0], 0)) : -1;
+        if (in.flat)
+        {
+          const double len = area.norm();
+          const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
+          double cm[3];
+          in.centroidMirror->GetTuple(cellId, cm);
+          batch.Add(centroid, normal, in.pose.ToWorld(V3(cm)), rgba, o, m);
+        }
+        else
+        {
+          o[0] = catar::ColourByte(rgba[0]);
+          o[1] = catar::ColourByte(rgba[1]);
+          o[2] = catar::ColourByte(rgba[2]);
+          o[3] = catar::ColourByte((m < 0 ? in.opacity : in.materials[m].opacity) * rgba[3]);
+        }
+      }
+    });
+}
 } // namespace
 
 struct vtkCatadioptricLighting::Internals
@@ -463,63 +626,9 @@ int vtkCatadioptricLighting::RequestData(
       normals.empty() && this->Internal->HasDegenerate(inNormals, normalFloats, normalDoubles, nPts)
       ? &this->Internal->GetNormals(input)
       : nullptr;
-    vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
-      catar::ShadeBatch batch(shading);
-      for (vtkIdType i = b; i < e; ++i)
-      {
-        unsigned char* o = out + 4 * i;
-        if (visibleBytes ? visibleBytes->GetValue(i) == 0 : pointVisible->GetComponent(i, 0) == 0)
-        {
-          std::fill(o, o + 4, 0);
-          continue;
-        }
-        double mp[3], nn[3];
-        if (mirrorValues)
-        {
-          std::copy(mirrorValues + 3 * i, mirrorValues + 3 * i + 3, mp);
-        }
-        else
-        {
-          mirror->GetTuple(i, mp);
-        }
-        const catar::Vec3 p = points(i);
-        catar::Vec3 n;
-        if (normalFloats)
-        {
-          n = catar::Vec3(normalFloats[3 * i], normalFloats[3 * i + 1], normalFloats[3 * i + 2])
-                .normalized();
-        }
-        else if (normalDoubles)
-        {
-          n = V3(normalDoubles + 3 * i).normalized();
-        }
-        else if (normals.empty())
-        {
-          inNormals->GetTuple(i, nn);
-          n = V3(nn).normalized();
-        }
-        else
-        {
-          n = normals[i];
-        }
-        if (fallback && !(n.squaredNorm() > 0.0))
-        {
-          n = (*fallback)[i];
-        }
-        float rgba[4];
-        if (pointBase.empty())
-        {
-          base.Get(i, 0, rgba);
-        }
-        else
-        {
-          std::copy(&pointBase[4 * i], &pointBase[4 * i] + 4, rgba);
-        }
-        // The viewer: the reflection point, camera to world.
-        batch.Add(p, n, pose.ToWorld(V3(mp)), rgba, o,
-          materialIndex ? static_cast<int>(materialIndex->GetComponent(i, 0)) : -1);
-      }
-    });
+    const PointInputs pin{ points, visibleBytes, pointVisible, mirrorValues, mirror, normalFloats,
+      normalDoubles, inNormals, normals, fallback, pointBase, base, materialIndex, pose };
+    ShadePoints(pin, nPts, shading, out);
     output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
     output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
     output->GetPointData()->AddArray(colors);
@@ -534,63 +643,9 @@ int vtkCatadioptricLighting::RequestData(
     vtkCellArray* polys = input->GetPolys();
     const vtkCatadioptricPointReader points(input->GetPoints());
     auto* visibleBytes = vtkUnsignedCharArray::SafeDownCast(cellVisible);
-    vtkCatadioptricParallel::For(
-      0, polys->GetNumberOfCells(), kPointGrain, [&](vtkIdType b, vtkIdType e) {
-        catar::ShadeBatch batch(shading);
-        vtkNew<vtkIdList> scratch;
-        for (vtkIdType c = b; c < e; ++c)
-        {
-          const vtkIdType cellId = first + c;
-          if (visibleBytes ? visibleBytes->GetValue(cellId) == 0
-                           : cellVisible->GetComponent(cellId, 0) == 0)
-          {
-            continue;
-          }
-          vtkIdType n = 0;
-          const vtkIdType* pts = nullptr;
-          polys->GetCellAtId(c, n, pts, scratch); // no copy when the ids are stored as vtkIdType
-          catar::Vec3 centroid = catar::Vec3::Zero();
-          catar::NewellNormal newell(points(pts[n - 1]));
-          for (vtkIdType k = 0; k < n; ++k)
-          {
-            const catar::Vec3 a = points(pts[k]);
-            centroid += a;
-            newell.Add(a);
-          }
-          centroid /= static_cast<double>(n);
-          const catar::Vec3& area = newell.Sum();
-          // Base colour: a cell colour, or the mean of the point colours.
-          float rgba[4] = { 0, 0, 0, 0 };
-          for (vtkIdType k = 0; k < (base.IsPerPoint() ? n : 1); ++k)
-          {
-            float v[4];
-            base.Get(pts[k], cellId, v);
-            for (int j = 0; j < 4; ++j)
-            {
-              rgba[j] += v[j] / (base.IsPerPoint() ? n : 1);
-            }
-          }
-          unsigned char* o = out + 4 * cellId;
-          // A cell's material is its first point's.
-          const int m =
-            materialIndex ? static_cast<int>(materialIndex->GetComponent(pts[0], 0)) : -1;
-          if (mode == FLAT)
-          {
-            const double len = area.norm();
-            const catar::Vec3 normal = len > 0 ? catar::Vec3(area / len) : catar::Vec3(0, 0, 1);
-            double cm[3];
-            centroidMirror->GetTuple(cellId, cm);
-            batch.Add(centroid, normal, pose.ToWorld(V3(cm)), rgba, o, m);
-          }
-          else
-          {
-            o[0] = catar::ColourByte(rgba[0]);
-            o[1] = catar::ColourByte(rgba[1]);
-            o[2] = catar::ColourByte(rgba[2]);
-            o[3] = catar::ColourByte((m < 0 ? opacity : materials[m].opacity) * rgba[3]);
-          }
-        }
-      });
+    const CellInputs cin{ points, polys, first, visibleBytes, cellVisible, centroidMirror, base,
+      materialIndex, materials, opacity, mode == FLAT, pose };
+    ShadeCells(cin, shading, out);
     output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
     output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
     output->GetCellData()->AddArray(colors);
