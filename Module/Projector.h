@@ -100,7 +100,7 @@ void ProjectRun(const Projector& projector, SolverType solver, std::ptrdiff_t be
   constexpr int M = Mirror::kMaxBatchSize;
   const std::ptrdiff_t W = projector.GetBatchSize();
   const std::ptrdiff_t serialEnd = std::min(end, begin + W);
-  // The reflection points of the last W points (NaN where there is none), by i % W.
+  // The reflection points of the last W points (NaN where there is none), by (i - begin) % W.
   Vec3 last[M];
   const Vec3 none = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   bool havePrevious = false;
@@ -112,7 +112,7 @@ void ProjectRun(const Projector& projector, SolverType solver, std::ptrdiff_t be
       havePrevious ? projector.ProjectWorldNear(p, previous) : projector.ProjectWorld(p, solver);
     havePrevious = HasProjection(q.status);
     previous = q.mirrorPoint;
-    last[(i - begin) % W] = havePrevious ? q.mirrorPoint : none;
+    last[i - begin] = havePrevious ? q.mirrorPoint : none; // i - begin < W
     store(i, p, q);
   }
   Vec3 p[M], guess[M];
@@ -123,12 +123,12 @@ void ProjectRun(const Projector& projector, SolverType solver, std::ptrdiff_t be
     for (std::ptrdiff_t l = 0; l < n; ++l)
     {
       p[l] = pointAt(first + l);
-      guess[l] = last[(first + l - begin) % W]; // the point W places before
+      guess[l] = last[l]; // the point W places before: batches start W apart from begin + W
     }
     projector.ProjectWorldNear(static_cast<std::size_t>(n), p, guess, q);
     for (std::ptrdiff_t l = 0; l < n; ++l)
     {
-      last[(first + l - begin) % W] = HasProjection(q[l].status) ? q[l].mirrorPoint : none;
+      last[l] = HasProjection(q[l].status) ? q[l].mirrorPoint : none;
       store(first + l, p[l], q[l]);
     }
   }

@@ -14,36 +14,10 @@ ShadeBatch::ShadeBatch(const Settings& settings)
   std::fill(this->Opacity, this->Opacity + W, settings.defaults.opacity);
 }
 
-void ShadeBatch::Add(const Vec3& p, const Vec3& n, const Vec3& viewer, const float rgba[4],
-  unsigned char* out, int material)
+void ShadeBatch::TraceShadows(int i)
 {
-  const int i = this->Count;
-  const ShadingMaterial& m = material < 0 ? this->S.defaults : (*this->S.materials)[material];
-  if (material >= 0)
-  {
-    this->M[i] = m.material;
-    this->Opacity[i] = m.opacity;
-  }
-  if (this->S.baseColours)
-  {
-    const Vec3 c(rgba[0], rgba[1], rgba[2]);
-    this->M[i].ambient = m.ambientK * c;
-    this->M[i].diffuse = m.diffuseK * c;
-  }
-  this->P[i] = p;
-  this->N[i] = (this->S.twoSided && n.dot(viewer - p) < 0) ? Vec3(-n) : n;
-  this->Viewer[i] = viewer;
-  if (this->S.shadowScene)
-  {
-    TraceShadows(*this->S.shadowScene, p, this->N[i], *this->S.lights,
-      this->Lit.data() + i * this->S.lights->size());
-  }
-  this->Alpha[i] = rgba[3];
-  this->Out[i] = out;
-  if (++this->Count == W)
-  {
-    this->Flush();
-  }
+  catar::TraceShadows(*this->S.shadowScene, this->P[i], this->N[i], *this->S.lights,
+    this->Lit.data() + i * this->S.lights->size());
 }
 
 void ShadeBatch::Flush()

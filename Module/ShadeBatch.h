@@ -58,12 +58,43 @@ public:
   /// Point p (normal n, viewer: world), base colour rgba, material (an index into the settings'
   /// materials, or -1: the defaults), whose colour goes to out[0..3].
   void Add(const Vec3& p, const Vec3& n, const Vec3& viewer, const float rgba[4],
-    unsigned char* out, int material = -1);
+    unsigned char* out, int material = -1)
+  {
+    const int i = this->Count;
+    const ShadingMaterial& m = material < 0 ? this->S.defaults : (*this->S.materials)[material];
+    if (material >= 0)
+    {
+      this->M[i] = m.material;
+      this->Opacity[i] = m.opacity;
+    }
+    if (this->S.baseColours)
+    {
+      const Vec3 c(rgba[0], rgba[1], rgba[2]);
+      this->M[i].ambient = m.ambientK * c;
+      this->M[i].diffuse = m.diffuseK * c;
+    }
+    this->P[i] = p;
+    this->N[i] = (this->S.twoSided && n.dot(viewer - p) < 0) ? Vec3(-n) : n;
+    this->Viewer[i] = viewer;
+    if (this->S.shadowScene)
+    {
+      this->TraceShadows(i);
+    }
+    this->Alpha[i] = rgba[3];
+    this->Out[i] = out;
+    if (++this->Count == W)
+    {
+      this->Flush();
+    }
+  }
 
   /// Shades the points added so far.
   void Flush();
 
 private:
+  // The shadow flags of point i (RayScene.h stays out of this header).
+  void TraceShadows(int i);
+
   static constexpr int W = kShadeLanes;
   const Settings& S;
   std::vector<unsigned char> Lit; // W x lights shadow flags
