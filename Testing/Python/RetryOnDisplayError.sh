@@ -1,17 +1,17 @@
 #!/bin/bash
-# Runs a command that opens an OpenGL window on the X display; if it fails because the display
-# refused the connection ("bad X server connection": the shared Xvfb turns one away now and then
-# under a parallel test run), runs it again, up to three times in all. Any other failure is the
-# command's own and is returned at once.
+# Runs a command that opens an OpenGL window on the X display; if it fails because the window could
+# not be made (vtkXOpenGLRenderWindow reports it, e.g. "bad X server connection": the shared Xvfb
+# turns a connection away now and then under a parallel test run), runs it again, up to three
+# times in all. Any other failure is the command's own and is returned at once.
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 for attempt in 1 2 3; do
   "$@" 2>&1 | tee "$log"
   status=${PIPESTATUS[0]}
-  if [[ $status -eq 0 ]] || ! grep -q "bad X server connection" "$log"; then
+  if [[ $status -eq 0 ]] || ! grep -q "vtkXOpenGLRenderWindow" "$log"; then
     exit "$status"
   fi
-  echo "RetryOnDisplayError: attempt $attempt: the X display refused the connection; again" >&2
+  echo "RetryOnDisplayError: attempt $attempt: no OpenGL window on the X display; again" >&2
   sleep 1
 done
 exit "$status"
