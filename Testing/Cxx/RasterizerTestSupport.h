@@ -21,6 +21,7 @@
 #include <ostream>
 #include <random>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -212,6 +213,36 @@ inline RasterVertex Vtx(
 
 // Expected byte for an exact value v in [0, 255]: returns true if `actual` is acceptable, i.e.
 // round-to-nearest of v, or either neighbour when v is within 1e-3 of a rounding tie.
+/// Counts pixels checked against a reference premultiplied RGBA (within one unit per channel)
+/// and keeps the first mismatch for the failure message.
+struct PixelChecks
+{
+  int checked = 0;
+  int bad = 0;
+  std::string firstBad;
+  /// value: the reference colour (RGB) and alpha in [0, 1] of triangle n's pixel (x, y).
+  void Premultiplied(const Image& img, int n, int x, int y, const long double value[4])
+  {
+    const long double expected[4] = { 255 * value[0] * value[3], 255 * value[1] * value[3],
+      255 * value[2] * value[3], 255 * value[3] };
+    for (int c = 0; c < 4; ++c)
+    {
+      ++this->checked;
+      if (std::fabs(static_cast<long double>(img.at(x, y)[c]) - expected[c]) > 1.0L)
+      {
+        if (!this->bad)
+        {
+          std::ostringstream os;
+          os << "triangle " << n << " pixel " << x << "," << y << " channel " << c << " expected "
+             << static_cast<double>(expected[c]) << " got " << static_cast<int>(img.at(x, y)[c]);
+          this->firstBad = os.str();
+        }
+        ++this->bad;
+      }
+    }
+  }
+};
+
 inline bool ByteMatches(long double v, int actual)
 {
   const long double f = v - std::floor(v);

@@ -15,8 +15,7 @@ TEST(Rasterizer, GouraudColourIsTheBarycentricInterpolation)
   Image img(w, h);
   std::mt19937 rng(31);
   std::uniform_real_distribution<float> uc(-0.3f, 1.3f), ua(0.0f, 1.0f);
-  int checked = 0, bad = 0;
-  std::string firstBad;
+  PixelChecks checks;
   for (int n = 0; n < 300; ++n)
   {
     GridPt t[3];
@@ -57,29 +56,12 @@ TEST(Rasterizer, GouraudColourIsTheBarycentricInterpolation)
             value[c] += l[i] * std::min(1.0L, std::max(0.0L, static_cast<long double>(col[i][c])));
           }
         }
-        const long double expected[4] = { 255 * value[0] * value[3], 255 * value[1] * value[3],
-          255 * value[2] * value[3], 255 * value[3] };
-        for (int c = 0; c < 4; ++c)
-        {
-          ++checked;
-          if (std::fabs(static_cast<long double>(img.at(x, y)[c]) - expected[c]) > 1.0L)
-          {
-            if (!bad)
-            {
-              std::ostringstream os;
-              os << "triangle " << n << " pixel " << x << "," << y << " channel " << c
-                 << " expected " << static_cast<double>(expected[c]) << " got "
-                 << static_cast<int>(img.at(x, y)[c]);
-              firstBad = os.str();
-            }
-            ++bad;
-          }
-        }
+        checks.Premultiplied(img, n, x, y, value);
       }
     }
   }
-  EXPECT_GT(checked, 10000);
-  EXPECT_EQ(bad, 0) << firstBad;
+  EXPECT_GT(checks.checked, 10000);
+  EXPECT_EQ(checks.bad, 0) << checks.firstBad;
 }
 
 TEST(Rasterizer, AlphaBlendingFormula)
