@@ -38,17 +38,24 @@ MirrorDescription ReadMirror(const Node& mirror)
       "mirror type '" + typeName + "' is not supported (known: " + MirrorTypeNames() + ")");
   }
   MirrorDescription d(type->name, {});
-  for (const MirrorParameter& p : type->parameters)
+  try
   {
-    if (p.count == 1)
+    for (const MirrorParameter& p : type->parameters)
     {
-      d.parameters.push_back(Number(mirror, p.key));
+      if (p.count == 1)
+      {
+        d.parameters.push_back(Number(mirror, p.key));
+      }
+      else
+      {
+        const std::vector<double> v = Numbers(mirror[p.key], "mirror." + p.key, p.count);
+        d.parameters.insert(d.parameters.end(), v.begin(), v.end());
+      }
     }
-    else
-    {
-      const std::vector<double> v = Numbers(mirror[p.key], "mirror." + p.key, p.count);
-      d.parameters.insert(d.parameters.end(), v.begin(), v.end());
-    }
+  }
+  catch (const ParseError& e)
+  {
+    throw ParseError("mirror type '" + type->name + "': " + e.what());
   }
   return d;
 }

@@ -1,0 +1,811 @@
+#include "QuadricMirror.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <sstream>
+
+namespace catar
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kGrazingCosine = 1e-9; // cos(incidence) below this: no usable reflection
+constexpr int kNewtonSteps = 60;
+
+using Vec4 = Eigen::Vector4d;
+
+// The numbers every quadric type ends with: mirror_to_camera (16, row-major) and z_range (2).
+constexpr int kTail = 18;
+
+Mat4 RowMajor4(const double* v)
+{
+  Mat4 m;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      m(r, c) = v[4 * r + c];
+    }
+  }
+  return m;
+}
+
+void AppendRowMajor(const Mat4& m, std::vector<double>& out)
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out.push_back(m(r, c));
+    }
+  }
+}
+
+Mat4 Translation(double x, double y, double z)
+{
+  Mat4 m = Mat4::Identity();
+  m.topRightCorner<3, 1>() = Vec3(x, y, z);
+  return m;
+}
+
+std::vector<MirrorParameter> WithTail(std::vector<MirrorParameter> shape)
+{
+  shape.push_back({ "mirror_to_camera", 16,
+    "H_OC, rigid, row-major: x_camera = H_OC x_mirror (the mirror frame's axis z is the "
+    "shape's)" });
+  shape.push_back({ "z_range", 2, "zmin, zmax: the mirror is the part with zmin <= z <= zmax" });
+  return shape;
+}
+
+std::vector<double> WithTail(std::vector<double> shape, const Mat4& h, double zmin, double zmax)
+{
+  AppendRowMajor(h, shape);
+  shape.push_back(zmin);
+  shape.push_back(zmax);
+  return shape;
+}
+
+// Omega of each named shape from its own numbers (the description's first ones); false with a
+// sentence when the numbers are out of range.
+bool ShapeOmega(const std::string& type, const double* p, Mat4& omega, std::string& error)
+{
+  omega.setZero();
+  std::ostringstream err;
+  if (type == "quadric")
+  {
+    omega = RowMajor4(p);
+    return true;
+  }
+  if (type == "hyperboloid")
+  {
+    if (!(p[0] > 0.0 && p[1] > 0.0))
+    {
+      err << "mirror.a and mirror.b must be positive (a=" << p[0] << ", b=" << p[1] << ")";
+      error = err.str();
+      return false;
+    }
+    omega.diagonal() = Vec4(1.0 / (p[1] * p[1]), 1.0 / (p[1] * p[1]), -1.0 / (p[0] * p[0]), 1.0);
+    return true;
+  }
+  if (type == "paraboloid")
+  {
+    if (!(p[0] > 0.0))
+    {
+      err << "mirror.focal must be positive (" << p[0] << ")";
+      error = err.str();
+      return false;
+    }
+    // x^2 + y^2 - 4 f z - 4 f^2
+    omega(0, 0) = omega(1, 1) = 1.0;
+    omega(2, 3) = omega(3, 2) = -2.0 * p[0];
+    omega(3, 3) = -4.0 * p[0] * p[0];
+    return true;
+  }
+  if (type == "ellipsoid")
+  {
+    if (!(p[0] > 0.0 && p[1] > 0.0 && p[2] > 0.0))
+    {
+      err << "mirror.semi_axes must be positive (" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+      error = err.str();
+      return false;
+    }
+    omega.diagonal() = Vec4(1.0 / (p[0] * p[0]), 1.0 / (p[1] * p[1]), 1.0 / (p[2] * p[2]), -1.0);
+    return true;
+  }
+  if (type == "cone")
+  {
+    if (!(p[0] > 0.0 && p[0] < 90.0))
+    {
+      err << "mirror.half_angle must be in (0, 90) degrees (" << p[0] << ")";
+      error = err.str();
+      return false;
+    }
+    const double t = std::tan(p[0] * kPi / 180.0);
+    omega.diagonal() = Vec4(1.0, 1.0, -t * t, 0.0);
+    return true;
+  }
+  error = "not a quadric mirror type: " + type;
+  return false;
+}
+
+int ShapeCount(const std::string& type)
+{
+  if (type == "quadric")
+  {
+    return 16;
+  }
+  if (type == "hyperboloid")
+  {
+    return 2;
+  }
+  if (type == "ellipsoid")
+  {
+    return 3;
+  }
+  if (type == "paraboloid" || type == "cone")
+  {
+    return 1;
+  }
+  return -1;
+}
+
+std::shared_ptr<const detail::QuadricSurface> Build(
+  const MirrorDescription& description, const QuadricGeometry& geometry);
+
+std::string ValidateQuadric(const std::string& type, const std::vector<double>& p)
+{
+  const MirrorDescription d(type, p);
+  QuadricGeometry g;
+  std::string error;
+  if (!ShapeOmega(type, p.data(), g.omega, error))
+  {
+    return error;
+  }
+  QuadricFromDescription(d, g);
+  error = g.Validate();
+  if (!error.empty())
+  {
+    return error;
+  }
+  // The camera must see some of it.
+  if (!Build(d, g))
+  {
+    return "the camera sees no part of the mirror (check mirror_to_camera and z_range)";
+  }
+  return std::string();
+}
+
+// A few surfaces kept built (the table takes a fraction of a millisecond; filters make a
+// projector every execution).
+std::shared_ptr<const detail::QuadricSurface> Build(
+  const MirrorDescription& description, const QuadricGeometry& geometry)
+{
+  static std::mutex mutex;
+  static std::vector<std::shared_ptr<const detail::QuadricSurface>> cache;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& s : cache)
+    {
+      if (s->Describe() == description)
+      {
+        return s->Viewpoint().allFinite() ? s : nullptr;
+      }
+    }
+  }
+  auto surface = std::make_shared<const detail::QuadricSurface>(description, geometry);
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.insert(cache.begin(), surface);
+  if (cache.size() > 8)
+  {
+    cache.pop_back();
+  }
+  return surface->Viewpoint().allFinite() ? surface : nullptr;
+}
+
+MirrorType MakeType(const std::string& name, const std::string& help,
+  std::vector<MirrorParameter> shape, std::vector<double> defaults)
+{
+  MirrorType t;
+  t.name = name;
+  t.help = help;
+  t.parameters = WithTail(std::move(shape));
+  t.defaults = std::move(defaults);
+  t.validate = nullptr; // set by the caller: a plain function pointer per type
+  t.make = [](const MirrorDescription& d) -> std::shared_ptr<const Mirror> {
+    QuadricGeometry g;
+    QuadricFromDescription(d, g);
+    return Build(d, g);
+  };
+  return t;
+}
+} // namespace
+
+std::string QuadricGeometry::Validate() const
+{
+  std::ostringstream err;
+  const double norm = this->omega.cwiseAbs().maxCoeff();
+  if (!(norm > 0.0))
+  {
+    return "mirror.matrix is zero";
+  }
+  if ((this->omega - this->omega.transpose()).cwiseAbs().maxCoeff() > 1e-12 * norm)
+  {
+    return "mirror.matrix is not symmetric";
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat4> eig(this->omega / norm);
+  int rank = 0;
+  for (int i = 0; i < 4; ++i)
+  {
+    rank += std::abs(eig.eigenvalues()[i]) > 1e-12 ? 1 : 0;
+  }
+  if (rank < 3 || !(this->omega.topLeftCorner<3, 3>().cwiseAbs().maxCoeff() > 1e-12 * norm))
+  {
+    err << "mirror.matrix is degenerate (rank " << rank << "): a plane, a pair of planes or a line";
+    return err.str();
+  }
+  const Mat3 R = this->mirrorToCamera.topLeftCorner<3, 3>();
+  const double orth = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
+  if (orth > 1e-9 || R.determinant() < 0.0 ||
+    (this->mirrorToCamera.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-12)
+  {
+    err << "mirror.mirror_to_camera is not a rigid transform (|R^T R - I| = " << orth
+        << ", det = " << R.determinant() << ", last row must be 0 0 0 1)";
+    return err.str();
+  }
+  if (!(this->zmin < this->zmax))
+  {
+    err << "mirror.z_range is empty (zmin = " << this->zmin << ", zmax = " << this->zmax << ")";
+    return err.str();
+  }
+  // The camera centre in the mirror frame.
+  const Vec3 t = this->mirrorToCamera.topRightCorner<3, 1>();
+  const Vec3 camera = -(R.transpose() * t);
+  const Vec4 X(camera.x(), camera.y(), camera.z(), 1.0);
+  const double F = X.dot(this->omega * X) / norm;
+  const Vec4 gradient = 2.0 * this->omega * X / norm;
+  const double scale = std::max(1.0, camera.norm());
+  const bool inRange = camera.z() >= this->zmin && camera.z() <= this->zmax;
+  if (std::abs(F) <= 1e-12 * std::max(gradient.head<3>().norm() * scale, 1e-300) && inRange)
+  {
+    return "the camera centre is on the mirror surface";
+  }
+  if (F < 0.0 && inRange)
+  {
+    return "the camera centre is inside the mirror (the quadric is negative there, within "
+           "z_range)";
+  }
+  return std::string();
+}
+
+bool QuadricFromDescription(const MirrorDescription& description, QuadricGeometry& g)
+{
+  const int shape = ShapeCount(description.type);
+  if (shape < 0 || static_cast<int>(description.parameters.size()) != shape + kTail)
+  {
+    return false;
+  }
+  const double* p = description.parameters.data();
+  std::string ignored;
+  if (!ShapeOmega(description.type, p, g.omega, ignored))
+  {
+    g.omega.setZero();
+  }
+  g.mirrorToCamera = RowMajor4(p + shape);
+  g.zmin = p[shape + 16];
+  g.zmax = p[shape + 17];
+  return true;
+}
+
+std::vector<MirrorType> QuadricMirrorTypes()
+{
+  std::vector<MirrorType> types;
+  // The defaults: each a mirror 10 to 20 cm in front of the camera, axis along the camera's.
+  {
+    // A sphere of radius 5 cm given as a quadric: x^2 + y^2 + z^2 - r^2.
+    Mat4 omega = Mat4::Identity();
+    omega(3, 3) = -0.05 * 0.05;
+    std::vector<double> shape;
+    AppendRowMajor(omega, shape);
+    MirrorType t = MakeType("quadric",
+      "any quadric X^T Omega X = 0 (mirror frame, negative inside), placed by mirror_to_camera",
+      { { "matrix", 16, "Omega, symmetric, row-major" } },
+      WithTail(shape, Translation(0, 0, 0.2), -0.05, 0.05));
+    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("quadric", p); };
+    types.push_back(t);
+  }
+  {
+    // a = 2 cm, b = 3 cm; the camera at the outer focus (0, 0, -c): central.
+    const double c = std::sqrt(0.02 * 0.02 + 0.03 * 0.03);
+    MirrorType t = MakeType("hyperboloid",
+      "a sheet of (x^2 + y^2) / b^2 - z^2 / a^2 + 1 = 0 (foci at z = +-sqrt(a^2 + b^2))",
+      { { "a", 1, "semi-axis along z (vertices at z = +-a)" }, { "b", 1, "semi-axis across z" } },
+      WithTail({ 0.02, 0.03 }, Translation(0, 0, c), 0.02, 0.05));
+    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("hyperboloid", p); };
+    types.push_back(t);
+  }
+  {
+    MirrorType t = MakeType("paraboloid",
+      "x^2 + y^2 = 4 focal (z + focal): focus at the origin, vertex at z = -focal",
+      { { "focal", 1, "the focal distance" } },
+      WithTail({ 0.01 }, Translation(0, 0, 0.1), -0.01, 0.02));
+    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("paraboloid", p); };
+    types.push_back(t);
+  }
+  {
+    MirrorType t = MakeType("ellipsoid", "x^2 / ax^2 + y^2 / ay^2 + z^2 / az^2 = 1",
+      { { "semi_axes", 3, "ax, ay, az" } },
+      WithTail({ 0.03, 0.03, 0.02 }, Translation(0, 0, 0.15), -0.02, 0.02));
+    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("ellipsoid", p); };
+    types.push_back(t);
+  }
+  {
+    MirrorType t = MakeType("cone", "x^2 + y^2 = tan(half_angle)^2 z^2: apex at the origin",
+      { { "half_angle", 1, "degrees, in (0, 90)" } },
+      WithTail({ 30.0 }, Translation(0, 0, 0.1), 0.0, 0.04));
+    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("cone", p); };
+    types.push_back(t);
+  }
+  return types;
+}
+
+namespace detail
+{
+QuadricSurface::QuadricSurface(const MirrorDescription& description, const QuadricGeometry& g)
+  : Description(description)
+{
+  this->EffectiveViewpoint = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  // The quadric in the camera frame: Q = H^-T Omega H^-1, scaled to |A| = 1.
+  const Mat3 R = g.mirrorToCamera.topLeftCorner<3, 3>();
+  const Vec3 t = g.mirrorToCamera.topRightCorner<3, 1>();
+  Mat4 inverse = Mat4::Identity();
+  inverse.topLeftCorner<3, 3>() = R.transpose();
+  inverse.topRightCorner<3, 1>() = -(R.transpose() * t);
+  Mat4 Q = inverse.transpose() * g.omega * inverse;
+  Q = 0.5 * (Q + Q.transpose());
+  const double norm = Q.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
+  if (!(norm > 0.0) || !std::isfinite(norm))
+  {
+    return;
+  }
+  Q /= norm;
+  this->A = Q.topLeftCorner<3, 3>();
+  this->B = Q.topRightCorner<3, 1>();
+  this->C = Q(3, 3);
+  this->W = inverse.row(2).head<3>().transpose();
+  this->W0 = inverse(2, 3);
+  this->Zmin = g.zmin;
+  this->Zmax = g.zmax;
+  this->Length = std::max(t.norm(), 1e-300);
+
+  // Which directions meet the mirror: a scan of the whole sphere of directions, then a finer grid
+  // about the cone that holds the hits.
+  std::vector<Vec3> hits;
+  const int rows = 64, cols = 128;
+  for (int i = 0; i < rows; ++i)
+  {
+    const double theta = kPi * (i + 0.5) / rows;
+    for (int j = 0; j < cols; ++j)
+    {
+      const double phi = 2.0 * kPi * (j + 0.5) / cols;
+      const Vec3 d(
+        std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      if (this->FirstHit(Vec3::Zero(), d, 0.0) > 0.0)
+      {
+        hits.push_back(d);
+      }
+    }
+  }
+  // Also the directions to the points of the axis within z_range (a small mirror far away may
+  // fall between the scan's rays).
+  for (int k = 0; k <= 8; ++k)
+  {
+    const double z = g.zmin + (g.zmax - g.zmin) * k / 8.0;
+    const Vec3 p = R * Vec3(0, 0, z) + t;
+    if (p.norm() > 0.0 && this->FirstHit(Vec3::Zero(), p.normalized(), 0.0) > 0.0)
+    {
+      hits.push_back(p.normalized());
+    }
+  }
+  if (hits.empty())
+  {
+    return;
+  }
+  Vec3 axis = Vec3::Zero();
+  for (const Vec3& d : hits)
+  {
+    axis += d;
+  }
+  axis = axis.norm() > 0.0 ? Vec3(axis.normalized()) : hits.front();
+  double spread = 0.0; // the largest angle from the axis, as a cosine
+  double cosMin = 1.0;
+  for (const Vec3& d : hits)
+  {
+    cosMin = std::min(cosMin, d.dot(axis));
+  }
+  spread = std::acos(std::max(-1.0, std::min(1.0, cosMin))) + 2.0 * kPi / cols;
+  spread = std::min(spread, 0.49 * kPi);
+  const Vec3 e1 = axis.unitOrthogonal();
+  const Vec3 e2 = axis.cross(e1);
+  const int n = 64;
+  const double extent = std::tan(spread);
+  Vec3 sumPoint = Vec3::Zero();
+  Mat3 normal = Mat3::Zero();
+  Vec3 rhs = Vec3::Zero();
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      const double u = extent * (2.0 * (i + 0.5) / n - 1.0);
+      const double v = extent * (2.0 * (j + 0.5) / n - 1.0);
+      const Vec3 d = (axis + u * e1 + v * e2).normalized();
+      Vec3 r, nn;
+      if (!this->Intersect(d, r, nn))
+      {
+        continue;
+      }
+      Vec3 e = d - 2.0 * d.dot(nn) * nn;
+      e.normalize();
+      this->TablePoints.push_back(r);
+      this->TableDirections.push_back(e);
+      sumPoint += r;
+      const Mat3 P = Mat3::Identity() - e * e.transpose();
+      normal += P;
+      rhs += P * r;
+    }
+  }
+  if (this->TablePoints.empty())
+  {
+    return;
+  }
+  const Vec3 mean = sumPoint / static_cast<double>(this->TablePoints.size());
+  // The point nearest all the reflected rays; the mean mirror point where that is ill-posed.
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(normal);
+  Vec3 viewpoint = mean;
+  const Vec3 values = eig.eigenvalues(); // ascending
+  if (eig.info() == Eigen::Success && values[0] > 1e-6 * values[2])
+  {
+    const Mat3& V = eig.eigenvectors();
+    viewpoint = V * (V.transpose() * rhs).cwiseQuotient(values);
+  }
+  if (!viewpoint.allFinite() || (viewpoint - mean).norm() > 10.0 * this->Length)
+  {
+    viewpoint = mean;
+  }
+  this->EffectiveViewpoint = viewpoint;
+  this->Length = std::max(mean.norm(), 1e-300);
+  // The map: each cell keeps the first of the table's rays whose direction falls in it.
+  this->Map.assign(6 * kMapSide * kMapSide, -1);
+  for (std::size_t i = 0; i < this->TableDirections.size(); ++i)
+  {
+    int& cell = this->Map[this->MapCell(this->TableDirections[i])];
+    if (cell < 0)
+    {
+      cell = static_cast<int>(i);
+    }
+  }
+}
+
+int QuadricSurface::MapCell(const Vec3& d) const
+{
+  const Vec3 a = d.cwiseAbs();
+  int face;
+  double u, v, m;
+  if (a.x() >= a.y() && a.x() >= a.z())
+  {
+    face = d.x() > 0 ? 0 : 1;
+    m = a.x();
+    u = d.y();
+    v = d.z();
+  }
+  else if (a.y() >= a.z())
+  {
+    face = d.y() > 0 ? 2 : 3;
+    m = a.y();
+    u = d.x();
+    v = d.z();
+  }
+  else
+  {
+    face = d.z() > 0 ? 4 : 5;
+    m = a.z();
+    u = d.x();
+    v = d.y();
+  }
+  if (!(m > 0.0))
+  {
+    return 0;
+  }
+  const int i =
+    std::min(kMapSide - 1, std::max(0, static_cast<int>((u / m + 1.0) * 0.5 * kMapSide)));
+  const int j =
+    std::min(kMapSide - 1, std::max(0, static_cast<int>((v / m + 1.0) * 0.5 * kMapSide)));
+  return (face * kMapSide + j) * kMapSide + i;
+}
+
+bool QuadricSurface::InPart(const Vec3& r, double tolerance) const
+{
+  const double z = this->MirrorZ(r);
+  return z >= this->Zmin - tolerance && z <= this->Zmax + tolerance;
+}
+
+double QuadricSurface::FirstHit(const Vec3& o, const Vec3& d, double tmin) const
+{
+  const double a = d.dot(this->A * d);
+  const double b = d.dot(this->A * o + this->B);
+  const double c = this->Value(o);
+  double t[2];
+  int count = 0;
+  const double scaleA = d.squaredNorm();
+  if (std::abs(a) <= 1e-14 * scaleA)
+  {
+    if (b != 0.0)
+    {
+      t[count++] = -c / (2.0 * b);
+    }
+  }
+  else
+  {
+    const double disc = b * b - a * c;
+    if (disc < 0.0)
+    {
+      return -1.0;
+    }
+    const double s = std::sqrt(disc);
+    const double q = -(b + (b >= 0.0 ? s : -s));
+    if (q != 0.0)
+    {
+      t[count++] = q / a;
+      t[count++] = c / q;
+    }
+    else
+    {
+      t[count++] = 0.0;
+    }
+  }
+  if (count == 2 && t[1] < t[0])
+  {
+    std::swap(t[0], t[1]);
+  }
+  const double tolerance = 1e-9 * this->Length;
+  for (int k = 0; k < count; ++k)
+  {
+    if (t[k] > tmin && std::isfinite(t[k]) && this->InPart(o + t[k] * d, tolerance))
+    {
+      return t[k];
+    }
+  }
+  return -1.0;
+}
+
+bool QuadricSurface::Intersect(const Vec3& d, Vec3& point, Vec3& normal) const
+{
+  const double t = this->FirstHit(Vec3::Zero(), d, 0.0);
+  if (!(t > 0.0))
+  {
+    return false;
+  }
+  point = t * d;
+  normal = this->Gradient(point);
+  const double len = normal.norm();
+  if (!(len > 0.0))
+  {
+    return false;
+  }
+  normal /= len;
+  if (normal.dot(d) > 0.0)
+  {
+    normal = -normal; // the side facing the camera
+  }
+  return true;
+}
+
+bool QuadricSurface::Newton(const Vec3& P, Vec3& r) const
+{
+  const double L = this->Length;
+  // The residual of the Lagrange system at (x, lambda): stationarity (dimensionless) and the
+  // surface's equation (divided by L to weigh alike in the merit |G|).
+  auto residual = [&](const Vec3& x, double lambda, Vec4& G) {
+    const double la = x.norm();
+    const Vec3 q = x - P;
+    const double lq = q.norm();
+    if (!(la > 1e-12 * L) || !(lq > 1e-12 * L) || !x.allFinite())
+    {
+      return false;
+    }
+    G.head<3>() = x / la + q / lq - lambda * this->Gradient(x);
+    G[3] = this->Value(x) / L;
+    return G.allFinite();
+  };
+  double lambda = 0.0;
+  {
+    const Vec3 g = this->Gradient(r);
+    const Vec3 grad = r.normalized() + (r - P).normalized();
+    const double gg = g.squaredNorm();
+    lambda = gg > 0.0 ? grad.dot(g) / gg : 0.0;
+  }
+  Vec4 G;
+  if (!residual(r, lambda, G))
+  {
+    return false;
+  }
+  double merit = G.squaredNorm();
+  for (int it = 0; it < kNewtonSteps && merit > 0.0; ++it)
+  {
+    const double la = r.norm();
+    const Vec3 q = r - P;
+    const double lq = q.norm();
+    const Vec3 ah = r / la;
+    const Vec3 qh = q / lq;
+    const Vec3 g = this->Gradient(r);
+    Mat4 J;
+    J.topLeftCorner<3, 3>() = (Mat3::Identity() - ah * ah.transpose()) / la +
+      (Mat3::Identity() - qh * qh.transpose()) / lq - 2.0 * lambda * this->A;
+    J.topRightCorner<3, 1>() = -g;
+    J.bottomLeftCorner<1, 3>() = g.transpose() / L;
+    J(3, 3) = 0.0;
+    Vec4 step = J.partialPivLu().solve(-G);
+    if (!step.allFinite())
+    {
+      return false;
+    }
+    // Steps no longer than half the distance to the camera or the point, halved while they
+    // do not lower the residual.
+    const double limit = 0.5 * std::min(la, lq);
+    const double length = step.head<3>().norm();
+    if (length > limit)
+    {
+      step *= limit / length;
+    }
+    Vec4 trial;
+    bool better = false;
+    for (int half = 0; half < 12; ++half)
+    {
+      if (residual(r + step.head<3>(), lambda + step[3], trial) && trial.squaredNorm() < merit)
+      {
+        better = true;
+        break;
+      }
+      step *= 0.5;
+    }
+    if (!better)
+    {
+      break; // at the rounding floor (or stuck): judged below
+    }
+    r += step.head<3>();
+    lambda += step[3];
+    G = trial;
+    merit = G.squaredNorm();
+    if (step.head<3>().norm() <= 1e-16 * L)
+    {
+      break;
+    }
+  }
+  // Converged: the reflection law holds and the point is on the surface, to rounding.
+  const Vec3 g = this->Gradient(r);
+  return r.allFinite() && G.head<3>().norm() <= 1e-11 &&
+    std::abs(this->Value(r)) <= 1e-13 * g.norm() * L;
+}
+
+bool QuadricSurface::Blocks(const Vec3& r, const Vec3& P) const
+{
+  const Vec3 q = P - r;
+  const double lq = q.norm();
+  const double t = this->FirstHit(r, q / lq, 1e-9 * this->Length);
+  return t > 0.0 && t < lq * (1.0 - 1e-12) - 1e-9 * this->Length;
+}
+
+ProjectionStatus QuadricSurface::Check(const Vec3& P, const Vec3& r) const
+{
+  if (!this->InPart(r, 1e-9 * this->Length) || !(r.z() > 0.0))
+  {
+    return ProjectionStatus::NoReflection;
+  }
+  Vec3 n = this->Gradient(r);
+  n.normalize();
+  const Vec3 u1 = -r.normalized();
+  const Vec3 u2 = (P - r).normalized();
+  const double c1 = n.dot(u1);
+  const double c2 = n.dot(u2);
+  if (!(c1 * c2 > 0.0) || std::abs(c1) < kGrazingCosine || std::abs(c2) < kGrazingCosine)
+  {
+    return ProjectionStatus::NoReflection;
+  }
+  // The camera ray must meet the mirror first at r.
+  const double t = this->FirstHit(Vec3::Zero(), -u1, 0.0);
+  if (!(t > 0.0) || std::abs(t - r.norm()) > 1e-8 * this->Length)
+  {
+    return ProjectionStatus::HiddenByMirror;
+  }
+  if (this->Blocks(r, P))
+  {
+    return ProjectionStatus::HiddenByMirror;
+  }
+  return ProjectionStatus::Valid;
+}
+
+ProjectionStatus QuadricSurface::Reflect(
+  const Vec3& P, SolverType, Vec3& mirrorPoint, const Vec3* guess) const
+{
+  mirrorPoint.setZero();
+  if (!P.allFinite() || !this->EffectiveViewpoint.allFinite() || this->TablePoints.empty())
+  {
+    return ProjectionStatus::InvalidInput;
+  }
+  const double L = this->Length;
+  const Vec3 grad = this->Gradient(P);
+  const double F = this->Value(P);
+  if (std::abs(F) <= 1e-12 * grad.norm() * L && this->InPart(P, 1e-12 * L))
+  {
+    // On the mirror: its own reflection when the camera sees it.
+    const double t = P.norm() > 0.0 ? this->FirstHit(Vec3::Zero(), P.normalized(), 0.0) : -1.0;
+    if (t > 0.0 && std::abs(t - P.norm()) <= 1e-8 * L)
+    {
+      mirrorPoint = P;
+      return ProjectionStatus::Valid;
+    }
+    return ProjectionStatus::HiddenByMirror;
+  }
+  if (F < 0.0 && this->InPart(P, 0.0))
+  {
+    return ProjectionStatus::InsideMirror;
+  }
+  ProjectionStatus found = ProjectionStatus::NoReflection;
+  auto attempt = [&](Vec3 r) {
+    if (!this->Newton(P, r))
+    {
+      return false;
+    }
+    const ProjectionStatus s = this->Check(P, r);
+    if (s == ProjectionStatus::Valid)
+    {
+      mirrorPoint = r;
+      return true;
+    }
+    if (s == ProjectionStatus::HiddenByMirror)
+    {
+      found = s;
+    }
+    return false;
+  };
+  if (guess && guess->allFinite() && attempt(*guess))
+  {
+    return ProjectionStatus::Valid;
+  }
+  const Vec3 toPoint = P - this->EffectiveViewpoint;
+  if (toPoint.norm() > 0.0)
+  {
+    const int start = this->Map[this->MapCell(toPoint.normalized())];
+    if (start >= 0 && attempt(this->TablePoints[start]))
+    {
+      return ProjectionStatus::Valid;
+    }
+  }
+  // The table's rays that pass nearest the point, best first.
+  std::vector<std::pair<double, int>> order;
+  order.reserve(this->TablePoints.size());
+  for (std::size_t i = 0; i < this->TablePoints.size(); ++i)
+  {
+    const Vec3 q = P - this->TablePoints[i];
+    const double lq = q.norm();
+    order.emplace_back(
+      lq > 0.0 ? (q / lq - this->TableDirections[i]).squaredNorm() : 4.0, static_cast<int>(i));
+  }
+  const std::size_t tries = std::min<std::size_t>(6, order.size());
+  std::partial_sort(order.begin(), order.begin() + tries, order.end());
+  for (std::size_t k = 0; k < tries; ++k)
+  {
+    if (attempt(this->TablePoints[order[k].second]))
+    {
+      return ProjectionStatus::Valid;
+    }
+  }
+  mirrorPoint.setZero();
+  return found;
+}
+} // namespace detail
+} // namespace catar
