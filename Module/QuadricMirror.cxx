@@ -478,7 +478,8 @@ QuadricSurface::QuadricSurface(const MirrorDescription& description, const Quadr
   }
   this->EffectiveViewpoint = viewpoint;
   this->Length = std::max(mean.norm(), 1e-300);
-  // The map: each cell keeps the first of the table's rays whose direction falls in it.
+  // The map: each cell keeps the first of the table's rays whose direction falls in it; empty
+  // cells next to filled ones (on the same face) take a neighbour's, a few rings deep.
   this->Map.assign(6 * kMapSide * kMapSide, -1);
   for (std::size_t i = 0; i < this->TableDirections.size(); ++i)
   {
@@ -487,6 +488,34 @@ QuadricSurface::QuadricSurface(const MirrorDescription& description, const Quadr
     {
       cell = static_cast<int>(i);
     }
+  }
+  for (int ring = 0; ring < 4; ++ring)
+  {
+    std::vector<int> next = this->Map;
+    for (int face = 0; face < 6; ++face)
+    {
+      for (int j = 0; j < kMapSide; ++j)
+      {
+        for (int i = 0; i < kMapSide; ++i)
+        {
+          const int cell = (face * kMapSide + j) * kMapSide + i;
+          if (this->Map[cell] >= 0)
+          {
+            continue;
+          }
+          const int di[4] = { -1, 1, 0, 0 }, dj[4] = { 0, 0, -1, 1 };
+          for (int k = 0; k < 4 && next[cell] < 0; ++k)
+          {
+            const int ni = i + di[k], nj = j + dj[k];
+            if (ni >= 0 && ni < kMapSide && nj >= 0 && nj < kMapSide)
+            {
+              next[cell] = this->Map[(face * kMapSide + nj) * kMapSide + ni];
+            }
+          }
+        }
+      }
+    }
+    this->Map.swap(next);
   }
 }
 
@@ -607,19 +636,31 @@ bool QuadricSurface::Intersect(const Vec3& d, Vec3& point, Vec3& normal) const
 bool QuadricSurface::Newton(const Vec3& P, Vec3& r) const
 {
   const double L = this->Length;
-  // The residual of the Lagrange system at (x, lambda): stationarity (dimensionless) and the
-  // surface's equation (divided by L to weigh alike in the merit |G|).
-  auto residual = [&](const Vec3& x, double lambda, Vec4& G) {
-    const double la = x.norm();
+  // The Lagrange system at a point: unit vectors to the camera and from the point, the
+  // gradient, and the residual G (stationarity, dimensionless; the surface's equation divided by
+  // L to weigh alike in the merit |G|^2).
+  struct State
+  {
+    Vec3 x, ah, qh, g;
+    double la = 0.0, lq = 0.0;
+    Vec4 G;
+  };
+  auto evaluate = [&](const Vec3& x, double lambda, State& s) {
+    s.x = x;
+    s.la = x.norm();
     const Vec3 q = x - P;
-    const double lq = q.norm();
-    if (!(la > 1e-12 * L) || !(lq > 1e-12 * L) || !x.allFinite())
+    s.lq = q.norm();
+    if (!(s.la > 1e-12 * L) || !(s.lq > 1e-12 * L) || !x.allFinite())
     {
       return false;
     }
-    G.head<3>() = x / la + q / lq - lambda * this->Gradient(x);
-    G[3] = this->Value(x) / L;
-    return G.allFinite();
+    s.ah = x / s.la;
+    s.qh = q / s.lq;
+    const Vec3 Ax = this->A * x;
+    s.g = 2.0 * (Ax + this->B);
+    s.G.head<3>() = s.ah + s.qh - lambda * s.g;
+    s.G[3] = (x.dot(Ax) + 2.0 * this->B.dot(x) + this->C) / L;
+    return s.G.allFinite();
   };
   double lambda = 0.0;
   {
@@ -628,44 +669,57 @@ bool QuadricSurface::Newton(const Vec3& P, Vec3& r) const
     const double gg = g.squaredNorm();
     lambda = gg > 0.0 ? grad.dot(g) / gg : 0.0;
   }
-  Vec4 G;
-  if (!residual(r, lambda, G))
+  State s, trial;
+  if (!evaluate(r, lambda, s))
   {
     return false;
   }
-  double merit = G.squaredNorm();
+  double merit = s.G.squaredNorm();
   for (int it = 0; it < kNewtonSteps && merit > 0.0; ++it)
   {
-    const double la = r.norm();
-    const Vec3 q = r - P;
-    const double lq = q.norm();
-    const Vec3 ah = r / la;
-    const Vec3 qh = q / lq;
-    const Vec3 g = this->Gradient(r);
-    Mat4 J;
-    J.topLeftCorner<3, 3>() = (Mat3::Identity() - ah * ah.transpose()) / la +
-      (Mat3::Identity() - qh * qh.transpose()) / lq - 2.0 * lambda * this->A;
-    J.topRightCorner<3, 1>() = -g;
-    J.bottomLeftCorner<1, 3>() = g.transpose() / L;
-    J(3, 3) = 0.0;
-    Vec4 step = J.partialPivLu().solve(-G);
+    // The Newton step of [M, -g; g^T / L, 0] (dr, dlambda) = -G, M symmetric, by its Schur
+    // complement: dr = M^-1 (g dlambda - G1), g^T dr = -L G4.
+    const Mat3 M = (Mat3::Identity() - s.ah * s.ah.transpose()) / s.la +
+      (Mat3::Identity() - s.qh * s.qh.transpose()) / s.lq - 2.0 * lambda * this->A;
+    bool invertible = false;
+    Mat3 Minv;
+    double det = 0.0;
+    M.computeInverseAndDetWithCheck(Minv, det, invertible, 0.0);
+    Vec4 step;
+    const Vec3 Mg = invertible ? Vec3(Minv * s.g) : Vec3::Zero();
+    const double gMg = s.g.dot(Mg);
+    if (invertible && std::isfinite(det) && gMg != 0.0)
+    {
+      const Vec3 MG1 = Minv * s.G.head<3>();
+      const double dlambda = (s.g.dot(MG1) - L * s.G[3]) / gMg;
+      step.head<3>() = dlambda * Mg - MG1;
+      step[3] = dlambda;
+    }
+    else
+    {
+      Mat4 J;
+      J.topLeftCorner<3, 3>() = M;
+      J.topRightCorner<3, 1>() = -s.g;
+      J.bottomLeftCorner<1, 3>() = s.g.transpose() / L;
+      J(3, 3) = 0.0;
+      step = J.partialPivLu().solve(-s.G);
+    }
     if (!step.allFinite())
     {
       return false;
     }
     // Steps no longer than half the distance to the camera or the point, halved while they
     // do not lower the residual.
-    const double limit = 0.5 * std::min(la, lq);
+    const double limit = 0.5 * std::min(s.la, s.lq);
     const double length = step.head<3>().norm();
     if (length > limit)
     {
       step *= limit / length;
     }
-    Vec4 trial;
     bool better = false;
     for (int half = 0; half < 12; ++half)
     {
-      if (residual(r + step.head<3>(), lambda + step[3], trial) && trial.squaredNorm() < merit)
+      if (evaluate(s.x + step.head<3>(), lambda + step[3], trial) && trial.G.squaredNorm() < merit)
       {
         better = true;
         break;
@@ -676,27 +730,20 @@ bool QuadricSurface::Newton(const Vec3& P, Vec3& r) const
     {
       break; // at the rounding floor (or stuck): judged below
     }
-    r += step.head<3>();
     lambda += step[3];
-    G = trial;
-    merit = G.squaredNorm();
-    if (step.head<3>().norm() <= 1e-16 * L)
+    std::swap(s, trial);
+    merit = s.G.squaredNorm();
+    if (step.head<3>().norm() <= 1e-7 * L && s.G.head<3>().norm() <= 1e-12 &&
+      std::abs(s.G[3]) <= 1e-15 * s.g.norm())
     {
+      // Newton converges quadratically: after a step this short the point is at the rounding
+      // floor, as the residual confirms.
       break;
     }
   }
   // Converged: the reflection law holds and the point is on the surface, to rounding.
-  const Vec3 g = this->Gradient(r);
-  return r.allFinite() && G.head<3>().norm() <= 1e-11 &&
-    std::abs(this->Value(r)) <= 1e-13 * g.norm() * L;
-}
-
-bool QuadricSurface::Blocks(const Vec3& r, const Vec3& P) const
-{
-  const Vec3 q = P - r;
-  const double lq = q.norm();
-  const double t = this->FirstHit(r, q / lq, 1e-9 * this->Length);
-  return t > 0.0 && t < lq * (1.0 - 1e-12) - 1e-9 * this->Length;
+  r = s.x;
+  return s.G.head<3>().norm() <= 1e-11 && std::abs(s.G[3]) <= 1e-13 * s.g.norm();
 }
 
 ProjectionStatus QuadricSurface::Check(const Vec3& P, const Vec3& r) const
@@ -715,15 +762,32 @@ ProjectionStatus QuadricSurface::Check(const Vec3& P, const Vec3& r) const
   {
     return ProjectionStatus::NoReflection;
   }
-  // The camera ray must meet the mirror first at r.
-  const double t = this->FirstHit(Vec3::Zero(), -u1, 0.0);
-  if (!(t > 0.0) || std::abs(t - r.norm()) > 1e-8 * this->Length)
+  // The camera ray must meet the mirror first at r: its line meets the quadric at |r| and at
+  // the other root of the quadratic (their product is C / (d^T A d)), which must not be a point
+  // of the mirror before r.
+  const double lr = r.norm();
+  const Vec3 d = -u1;
+  const double a = d.dot(this->A * d);
+  const double tolerance = 1e-9 * this->Length;
+  if (a != 0.0)
   {
-    return ProjectionStatus::HiddenByMirror;
+    const double other = this->C / (a * lr);
+    if (other > tolerance && other < lr - tolerance && this->InPart(other * d, tolerance))
+    {
+      return ProjectionStatus::HiddenByMirror;
+    }
   }
-  if (this->Blocks(r, P))
+  // Nor may the reflected segment from r to P meet it: r + t u2 meets the quadric at t = 0 and
+  // at t = -2 u2^T (A r + B) / (u2^T A u2).
+  const double a2 = u2.dot(this->A * u2);
+  if (a2 != 0.0)
   {
-    return ProjectionStatus::HiddenByMirror;
+    const double other = -u2.dot(this->Gradient(r)) / a2;
+    if (other > tolerance && other < (P - r).norm() - tolerance &&
+      this->InPart(r + other * u2, tolerance))
+    {
+      return ProjectionStatus::HiddenByMirror;
+    }
   }
   return ProjectionStatus::Valid;
 }

@@ -75,8 +75,6 @@ private:
   // Whether r (converged for point) is a reflection the camera sees: Valid, HiddenByMirror or
   // NoReflection.
   ProjectionStatus Check(const Vec3& point, const Vec3& r) const;
-  // Whether the segment from r to point (exclusive) meets the mirror part.
-  bool Blocks(const Vec3& r, const Vec3& point) const;
   // The first hit of the line origin + t d (t > tmin) with the mirror part: t, or -1.
   double FirstHit(const Vec3& origin, const Vec3& d, double tmin) const;
   bool InPart(const Vec3& r, double tolerance) const;
@@ -95,7 +93,7 @@ private:
   // direction seen from EffectiveViewpoint (a cube map, kMapSide^2 cells a face) to the table.
   std::vector<Vec3> TablePoints;
   std::vector<Vec3> TableDirections;
-  static constexpr int kMapSide = 24;
+  static constexpr int kMapSide = 16;
   std::vector<int> Map; // 6 * kMapSide^2 table indices
   int MapCell(const Vec3& direction) const;
 };

@@ -2,6 +2,7 @@
 // back-projection cost per pixel, and raster cost per triangle, single-threaded. Run:
 //   build/bin/BenchmarkProjection [--benchmark_out=projection.csv --benchmark_out_format=csv]
 // The counter ns_per_item is the cost of one point / pixel / triangle.
+#include "../Cxx/TestCameras.h"
 #include "Projector.h"
 #include "Rasterizer.h"
 #include "SceneDescription.h"
@@ -58,6 +59,32 @@ void BM_ForwardProjection(benchmark::State& state)
   SetPerItem(state, pts.size());
 }
 BENCHMARK(BM_ForwardProjection)->Arg(0)->Arg(1);
+
+// The same through a hyperbolic mirror tilted 4 degrees (the general quadric solver): from its own
+// start (0) and from the reflection point of a point 1 mm away (1).
+void BM_ForwardProjectionQuadric(benchmark::State& state)
+{
+  const bool near = state.range(0) == 1;
+  state.SetLabel(near ? "tilted hyperboloid, start 1 mm away" : "tilted hyperboloid");
+  const CameraModel model = catar_test::TiltedHyperboloidCameraModel();
+  const Projector proj(model);
+  const std::vector<Vec3> pts = ScenePoints(model, 4096);
+  std::vector<Vec3> guesses;
+  for (const Vec3& p : pts)
+  {
+    guesses.push_back(proj.ProjectWorld(p + Vec3(1e-3, -1e-3, 1e-3)).mirrorPoint);
+  }
+  for (auto _ : state)
+  {
+    for (std::size_t i = 0; i < pts.size(); ++i)
+    {
+      benchmark::DoNotOptimize(
+        near ? proj.ProjectWorldNear(pts[i], guesses[i]) : proj.ProjectWorld(pts[i]));
+    }
+  }
+  SetPerItem(state, pts.size());
+}
+BENCHMARK(BM_ForwardProjectionQuadric)->Arg(0)->Arg(1);
 
 // Projection started from a nearby reflection point (what vtkCatadioptricProjection does for the
 // cells' centroids and, with the iterative solver, for each vertex after the first): the guess

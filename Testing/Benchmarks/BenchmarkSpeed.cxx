@@ -8,11 +8,13 @@
 // over --memory-frames frames (default 1000). Run:
 //   CATAR_SHARED_DATA=../shared/data build/bin/BenchmarkSpeed [--frames N] [--memory-frames N]
 //     [--csv FILE] [--object NAME] [--max-seconds S] [--threads N] [--quick] [--no-variants]
+//     [--tilted-hyperboloid]
 // --object NAME keeps only the objects of that name (box, sphere, bunny, happy-buddha-67k, ...).
 // --max-seconds S (default 30) stops a row after S seconds (at least 5 frames; the table
 // gives the count). --threads N runs vtkSMPTools on N threads (default: all cores).
 // --quick (CI smoke) renders 3 frames of a few small objects. --no-variants stops after the first
-// table (no variants, reference renderer or memory).
+// table (no variants, reference renderer or memory). --tilted-hyperboloid puts a hyperbolic mirror
+// tilted 4 degrees in place of the sphere (Testing/Cxx/TestCameras.h; the general quadric solver).
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
 
@@ -125,7 +127,8 @@ int main(int argc, char* argv[])
   bool quick = false;
   bool variants = true;
   std::string csv;
-  std::string only; // --object NAME: only the objects of that name
+  std::string only;         // --object NAME: only the objects of that name
+  bool hyperboloid = false; // --tilted-hyperboloid: the demo rig's mirror replaced
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
@@ -160,11 +163,15 @@ int main(int argc, char* argv[])
     {
       variants = false;
     }
+    else if (!std::strcmp(argv[i], "--tilted-hyperboloid"))
+    {
+      hyperboloid = true;
+    }
     else
     {
       std::fprintf(stderr,
         "usage: BenchmarkSpeed [--frames N] [--memory-frames N] [--csv FILE] [--object NAME] "
-        "[--threads N] [--max-seconds S] [--quick] [--no-variants]\n");
+        "[--threads N] [--max-seconds S] [--quick] [--no-variants] [--tilted-hyperboloid]\n");
       return 2;
     }
   }
@@ -175,6 +182,10 @@ int main(int argc, char* argv[])
   }
   vtkNew<vtkCatadioptricCamera> camera;
   DemoCamera(camera);
+  if (hyperboloid)
+  {
+    camera->SetModel(catar_test::TiltedHyperboloidCameraModel());
+  }
   vtkSmartPointer<vtkImageData> frame = CameraFrame(camera);
 
   // The objects, made only when they are measured (remeshing the largest box takes seconds).
