@@ -304,6 +304,51 @@ TEST(QuadricMirror, ExtremesGetAStatusAndNeverNaN)
   }
 }
 
+// Points whose reflection is on the rim of z_range (the last pixels of each row that see the
+// mirror): a reflection on the mirror, or a status, never a point off the mirror or NaN.
+TEST(QuadricMirror, TheRimOfZRange)
+{
+  for (const Case& c : Cases())
+  {
+    SCOPED_TRACE(c.name);
+    const Projector projector(Camera(c.mirror));
+    Mat4 omega = Mat4::Zero(), toMirror = Mat4::Identity();
+    MirrorFrame(c.mirror, omega, toMirror);
+    QuadricGeometry g;
+    ASSERT_TRUE(QuadricFromDescription(c.mirror, g));
+    int rim = 0, valid = 0;
+    for (int y = 0; y < 800; y += 5)
+    {
+      bool previous = false;
+      for (double x = 0.0; x < 800.0; x += 0.25)
+      {
+        const BackProjectedRay ray = projector.BackProjectCamera(Vec2(x, y));
+        const bool hit = HasProjection(ray.status);
+        if (hit != previous && hit)
+        {
+          ++rim;
+          for (double s : { 0.001, 0.1, 1.0 })
+          {
+            const ProjectedPoint q = projector.ProjectCamera(ray.mirrorPoint + s * ray.direction);
+            ASSERT_TRUE(q.pixel.allFinite() && q.mirrorPoint.allFinite());
+            if (HasProjection(q.status))
+            {
+              ++valid;
+              const Eigen::Vector4d X = toMirror *
+                Eigen::Vector4d(q.mirrorPoint.x(), q.mirrorPoint.y(), q.mirrorPoint.z(), 1);
+              EXPECT_GE(X.z(), g.zmin - 1e-9) << x << "," << y;
+              EXPECT_LE(X.z(), g.zmax + 1e-9) << x << "," << y;
+            }
+          }
+        }
+        previous = hit;
+      }
+    }
+    EXPECT_GT(rim, 20);
+    EXPECT_GT(valid, rim); // most rim points keep their reflection
+  }
+}
+
 TEST(QuadricMirror, CalibrationFilesNameTheKeyAtFault)
 {
   const std::string lens = R"({"image_width": 800, "image_height": 800,

@@ -136,6 +136,31 @@ class PipelineTest(unittest.TestCase):
             self.assertIn("camera", renderer.GetLastError())
 
 
+    def test_quadric_mirror_by_type_and_keys(self):
+        # A hyperbolic mirror with the camera at its outer focus: set by type and keys, it
+        # projects a point, and the ray of that pixel passes through the point.
+        cam = car.vtkCatadioptricCamera()
+        self.assertIn("hyperboloid", cam.GetMirrorTypes())
+        self.assertTrue(cam.SetMirrorType("hyperboloid"))
+        self.assertEqual(cam.GetMirrorParameterKeys("hyperboloid"),
+                         ("a", "b", "mirror_to_camera", "z_range"))
+        self.assertTrue(cam.SetMirrorParameter("a", 0.03))
+        self.assertTrue(cam.SetMirrorParameter("b", 0.04))
+        self.assertTrue(cam.SetMirrorParameter(
+            "mirror_to_camera", (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.05, 0, 0, 0, 1)))
+        self.assertTrue(cam.SetMirrorParameter("z_range", (0.03, 0.07)))
+        self.assertTrue(cam.IsValid(), cam.GetLastError())
+        origin, direction = [0.0] * 3, [0.0] * 3
+        px = [663.5 + 150, 523.5 - 80]
+        self.assertEqual(cam.BackProjectPixel(px, origin, direction),
+                         car.vtkCatadioptricCamera.VALID)
+        point = [origin[k] + 0.4 * direction[k] for k in range(3)]
+        pixel, mirror = [0.0, 0.0], [0.0] * 3
+        self.assertEqual(cam.ProjectWorldPoint(point, pixel, mirror),
+                         car.vtkCatadioptricCamera.VALID)
+        self.assertAlmostEqual(pixel[0], px[0], places=6)
+        self.assertAlmostEqual(pixel[1], px[1], places=6)
+
     def test_vector_setters_refuse_scalars(self):
         # SetDistortion(1) read past its argument (an unsized vtkSetVectorMacro) and crashed.
         cam = demo_camera()
