@@ -19,6 +19,13 @@ mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
 world_to_camera: [ 1, 0, 0, 0,  0, 0, -1, 1.0,  0, 1, 0, 0.14,  0, 0, 0, 1 ]
 """
 
+# The same rig with a hyperbolic mirror tilted 4 degrees (Data/scenes/hyperbolic-tilted.yaml's).
+HYPERBOLOID = CALIBRATION.replace(
+    "mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }",
+    "mirror: { type: hyperboloid, a: 0.03, b: 0.04, z_range: [ 0.03, 0.07 ],\n"
+    "          mirror_to_camera: [ 1, 0, 0, 0,  0, 0.9975640502598242, -0.0697564737441253, 0,\n"
+    "                              0, 0.0697564737441253, 0.9975640502598242, 0.05,  0, 0, 0, 1 ] }")
+
 
 def main():
     simple.LoadPlugin(plugin, remote=False)
@@ -91,6 +98,30 @@ def main():
         assert projected.GetPointData().GetArray("ImageCoordinates") is not None
         assert projected.GetCellData().GetArray("CentroidDepth") is not None
 
+        # Through the tilted hyperbolic mirror: the same pipeline and the reference agree, and the
+        # sphere covers the pixel its centre projects to.
+        hyperboloid = os.path.join(d, "hyperboloid.yaml")
+        with open(hyperboloid, "w") as f:
+            f.write(HYPERBOLOID)
+        for proxy in (projection, frame, tracer):
+            proxy.CalibrationFileName = hyperboloid
+        compositor.UpdatePipeline()
+        tracer.UpdatePipeline()
+        fast = servermanager.Fetch(compositor).GetPointData().GetScalars()
+        exact = servermanager.Fetch(tracer).GetPointData().GetScalars()
+        count = lambda a: sum(1 for i in range(a.GetNumberOfTuples())
+                              if a.GetTuple4(i) == (255.0, 0.0, 255.0, 255.0))
+        hyperMagenta, hyperExact = count(fast), count(exact)
+        assert hyperMagenta > 20 and abs(hyperExact - hyperMagenta) < 0.25 * hyperMagenta, (
+            hyperMagenta, hyperExact)
+        assert camera.Load(hyperboloid), camera.GetLastError()
+        assert camera.ProjectWorldPoint([0.06, -0.32, 0.92], px, mp) == 0
+        x, y = int(round(px[0])), int(round(px[1]))
+        assert fast.GetTuple4((dims[1] - 1 - y) * dims[0] + x) == (255.0, 0.0, 255.0, 255.0), px
+        for proxy in (projection, frame, tracer):
+            proxy.CalibrationFileName = calib
+        compositor.UpdatePipeline()
+
         # Shown in a render view without a frame: no error at all (the image views used to print
         # "Incorrect dimensionality": the extent announced before the data was 1x1).
         from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
@@ -107,7 +138,8 @@ def main():
             vtkOutputWindow.SetInstance(previous)
         assert shown.GetDimensions() == dims, shown.GetDimensions()
         assert messages.GetOutput() == "", messages.GetOutput()
-    print("ParaView plugin: %d magenta pixels (ray tracer %d); 1 passed, 0 failed" % (magenta, exactMagenta))
+    print("ParaView plugin: %d magenta pixels (ray tracer %d); through the tilted hyperboloid %d "
+          "(ray tracer %d); 1 passed, 0 failed" % (magenta, exactMagenta, hyperMagenta, hyperExact))
 
 
 if __name__ == "__main__":
