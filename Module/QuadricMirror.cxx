@@ -1,5 +1,7 @@
 #include "QuadricMirror.h"
 
+#include "Polynomials.h"
+
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
@@ -381,6 +383,28 @@ QuadricSurface::QuadricSurface(const MirrorDescription& description, const Quadr
   this->Zmin = g.zmin;
   this->Zmax = g.zmax;
   this->Length = std::max(t.norm(), 1e-300);
+  this->CameraToMirror = inverse;
+  this->MirrorToCameraFrame = g.mirrorToCamera;
+  {
+    // A surface of revolution about z (no cross terms with x or y, equal x and y terms) and the
+    // camera on that axis.
+    const Mat4& O = g.omega;
+    const double scale = O.cwiseAbs().maxCoeff();
+    const Vec3 camera = inverse.topRightCorner<3, 1>();
+    const double tol = 1e-12 * scale;
+    if (std::abs(O(0, 0) - O(1, 1)) <= tol && std::abs(O(0, 1)) <= tol &&
+      std::abs(O(0, 2)) <= tol && std::abs(O(1, 2)) <= tol && std::abs(O(0, 3)) <= tol &&
+      std::abs(O(1, 3)) <= tol && std::hypot(camera.x(), camera.y()) <= 1e-12 * this->Length &&
+      O(0, 0) != 0.0)
+    {
+      this->Axial = true;
+      this->Alpha = O(0, 0) / scale;
+      this->Beta = O(2, 2) / scale;
+      this->Gamma = O(2, 3) / scale;
+      this->Delta = O(3, 3) / scale;
+      this->AxialCamera = camera.z();
+    }
+  }
 
   // Which directions meet the mirror: a scan of the whole sphere of directions, then a finer grid
   // about the cone that holds the hits.
@@ -477,6 +501,17 @@ QuadricSurface::QuadricSurface(const MirrorDescription& description, const Quadr
     viewpoint = mean;
   }
   this->EffectiveViewpoint = viewpoint;
+  if (this->Axial)
+  {
+    // The widest elevation of a ray that meets the mirror, from the table, one scan step wider.
+    double widest = 0.0;
+    for (const Vec3& r : this->TablePoints)
+    {
+      const Vec3 m = (this->CameraToMirror * Eigen::Vector4d(r.x(), r.y(), r.z(), 1.0)).head<3>();
+      widest = std::max(widest, std::atan2(std::hypot(m.x(), m.y()), m.z() - this->AxialCamera));
+    }
+    this->ThetaMax = std::min(kPi, widest + 2.0 * extent / n);
+  }
   this->Length = std::max(mean.norm(), 1e-300);
   // The map: each cell keeps the first of the table's rays whose direction falls in it; empty
   // cells next to filled ones (on the same face) take a neighbour's, a few rings deep.
@@ -802,8 +837,201 @@ ProjectionStatus QuadricSurface::Check(const Vec3& P, const Vec3& r) const
   return ProjectionStatus::Valid;
 }
 
+bool QuadricSurface::AxialResidual(
+  double theta, double rhoP, double zP, double& residual, double& rho, double& z) const
+{
+  // The ray (rho, z) = (sin theta, cos theta) t from the camera (0, zc) meets
+  // alpha rho^2 + beta z^2 + 2 gamma z + delta = 0 where a t^2 + 2 b t + c = 0.
+  const double s = std::sin(theta), c = std::cos(theta), zc = this->AxialCamera;
+  const double a = this->Alpha * s * s + this->Beta * c * c;
+  const double b = this->Beta * zc * c + this->Gamma * c;
+  const double cc = this->Beta * zc * zc + 2.0 * this->Gamma * zc + this->Delta;
+  double t[2];
+  const int count = detail::SolveQuadratic(a, 2.0 * b, cc, t);
+  if (count == 2 && t[1] < t[0])
+  {
+    std::swap(t[0], t[1]);
+  }
+  const double tolerance = 1e-9 * this->Length;
+  for (int k = 0; k < count; ++k)
+  {
+    const double zk = zc + c * t[k];
+    if (!(t[k] > 0.0) || zk < this->Zmin - tolerance || zk > this->Zmax + tolerance)
+    {
+      continue;
+    }
+    rho = s * t[k];
+    z = zk;
+    // The normal (alpha rho, beta z + gamma), the camera ray d = (s, c), its reflection
+    // d - 2 (d.n) n / |n|^2, and the residual: the sine of the angle between the reflection and
+    // the direction to the point.
+    const double nr = this->Alpha * rho, nz = this->Beta * z + this->Gamma;
+    const double nn = nr * nr + nz * nz;
+    if (!(nn > 0.0))
+    {
+      return false;
+    }
+    const double dn = s * nr + c * nz;
+    const double er = s - 2.0 * dn * nr / nn, ez = c - 2.0 * dn * nz / nn;
+    const double wr = rhoP - rho, wz = zP - z;
+    const double w = std::hypot(wr, wz);
+    if (!(w > 0.0))
+    {
+      return false;
+    }
+    residual = (er * wz - ez * wr) / w;
+    // Reflected away from the point: no reflection there (the residual's sign would lie).
+    if (er * wr + ez * wz <= 0.0)
+    {
+      residual = std::numeric_limits<double>::quiet_NaN();
+    }
+    return true;
+  }
+  return false;
+}
+
+bool QuadricSurface::AxialReflect(const Vec3& P, Vec3& mirrorPoint, ProjectionStatus& status) const
+{
+  const Vec3 m = (this->CameraToMirror * Eigen::Vector4d(P.x(), P.y(), P.z(), 1.0)).head<3>();
+  const double rhoP = std::hypot(m.x(), m.y());
+  if (!(rhoP > 1e-9 * this->Length))
+  {
+    return false; // on the axis: a circle of solutions or the vertex; the general solver decides
+  }
+  const Vec3 er(m.x() / rhoP, m.y() / rhoP, 0.0); // the plane's radial direction
+  const double zP = m.z();
+  // Elevations from -ThetaMax (the far side of the axis) to ThetaMax, sampled; sign changes of
+  // the residual between two samples that meet the mirror bracket the reflections. Where the
+  // samples pass the mirror's rim, the rim itself is found and sampled (a reflection next to the
+  // rim would fall between a sample that meets the mirror and one that misses it).
+  constexpr int kSamples = 96;
+  double best = std::numeric_limits<double>::infinity();
+  bool any = false;
+  // A root bracketed by [t0, t1] (residuals f0, f1 of opposite signs): regula falsi with the
+  // Illinois rule down to the rounding floor, then the checks of any reflection.
+  auto consider = [&](double lo, double flo, double hi, double fhi) {
+    if (!std::isfinite(flo) || !std::isfinite(fhi) || (flo < 0.0) == (fhi < 0.0))
+    {
+      return;
+    }
+    double rhoR = 0.0, zR = 0.0;
+    int side = 0;
+    for (int k = 0; k < 100 && hi - lo > 1e-15 * std::max(1.0, std::abs(lo)); ++k)
+    {
+      double mid = (lo * fhi - hi * flo) / (fhi - flo);
+      if (!(mid > lo && mid < hi))
+      {
+        mid = 0.5 * (lo + hi);
+      }
+      double fm = 0.0;
+      if (!this->AxialResidual(mid, rhoP, zP, fm, rhoR, zR) || !std::isfinite(fm))
+      {
+        return;
+      }
+      if (fm == 0.0)
+      {
+        lo = hi = mid;
+        break;
+      }
+      if ((fm < 0.0) == (flo < 0.0))
+      {
+        lo = mid;
+        flo = fm;
+        fhi *= side == -1 ? 0.5 : 1.0;
+        side = -1;
+      }
+      else
+      {
+        hi = mid;
+        fhi = fm;
+        flo *= side == 1 ? 0.5 : 1.0;
+        side = 1;
+      }
+    }
+    // A sign change across a jump of the residual (the ray passing from one part of the mirror
+    // to another) is no root: the residual must vanish there.
+    double froot = 0.0;
+    if (!this->AxialResidual(0.5 * (lo + hi), rhoP, zP, froot, rhoR, zR) ||
+      !(std::abs(froot) <= 1e-9))
+    {
+      return;
+    }
+    const Vec3 rm = rhoR * er + Vec3(0.0, 0.0, zR);
+    const Vec3 r =
+      (this->MirrorToCameraFrame * Eigen::Vector4d(rm.x(), rm.y(), rm.z(), 1.0)).head<3>();
+    const ProjectionStatus s = this->Check(P, r);
+    if (s == ProjectionStatus::Valid)
+    {
+      const double path = r.norm() + (P - r).norm();
+      if (path < best)
+      {
+        best = path;
+        mirrorPoint = r;
+        any = true;
+      }
+    }
+    else if (s == ProjectionStatus::HiddenByMirror && !any)
+    {
+      status = s;
+    }
+  };
+  // The residual at theta; hit says whether the ray meets the mirror at all.
+  auto sample = [&](double theta, bool& hit) {
+    double residual = std::numeric_limits<double>::quiet_NaN(), rho = 0.0, z = 0.0;
+    hit = this->AxialResidual(theta, rhoP, zP, residual, rho, z);
+    return hit ? residual : std::numeric_limits<double>::quiet_NaN();
+  };
+  // The elevation between a ray that meets the mirror (inside) and one that misses it.
+  auto rim = [&](double inside, double outside) {
+    for (int k = 0; k < 60; ++k)
+    {
+      const double mid = 0.5 * (inside + outside);
+      bool hit = false;
+      sample(mid, hit);
+      (hit ? inside : outside) = mid;
+    }
+    return inside;
+  };
+  double previousTheta = 0.0, previousResidual = std::numeric_limits<double>::quiet_NaN();
+  bool previousHit = false;
+  for (int i = 0; i <= kSamples; ++i)
+  {
+    const double theta = this->ThetaMax * (2.0 * i / kSamples - 1.0);
+    bool hit = false;
+    const double residual = sample(theta, hit);
+    if (i > 0 && hit != previousHit)
+    {
+      const double edge = hit ? rim(theta, previousTheta) : rim(previousTheta, theta);
+      bool edgeHit = false;
+      const double atEdge = sample(edge, edgeHit);
+      if (hit)
+      {
+        consider(edge, atEdge, theta, residual);
+      }
+      else
+      {
+        consider(previousTheta, previousResidual, edge, atEdge);
+      }
+    }
+    else if (i > 0)
+    {
+      consider(previousTheta, previousResidual, theta, residual);
+    }
+    previousTheta = theta;
+    previousResidual = residual;
+    previousHit = hit;
+  }
+  if (any)
+  {
+    status = ProjectionStatus::Valid;
+    return true;
+  }
+  mirrorPoint.setZero();
+  return status == ProjectionStatus::HiddenByMirror;
+}
+
 ProjectionStatus QuadricSurface::Reflect(
-  const Vec3& P, SolverType, Vec3& mirrorPoint, const Vec3* guess) const
+  const Vec3& P, SolverType solver, Vec3& mirrorPoint, const Vec3* guess) const
 {
   mirrorPoint.setZero();
   if (!P.allFinite() || !this->EffectiveViewpoint.allFinite() || this->TablePoints.empty())
@@ -849,6 +1077,14 @@ ProjectionStatus QuadricSurface::Reflect(
   if (guess && guess->allFinite() && attempt(*guess))
   {
     return ProjectionStatus::Valid;
+  }
+  if (this->Axial && solver == SolverType::Quartic && !guess)
+  {
+    ProjectionStatus status = ProjectionStatus::NoReflection;
+    if (this->AxialReflect(P, mirrorPoint, status))
+    {
+      return status;
+    }
   }
   const Vec3 toPoint = P - this->EffectiveViewpoint;
   if (toPoint.norm() > 0.0)

@@ -69,6 +69,16 @@ public:
   /// The length that scales the tolerances (the distance to the mirror's viewpoint).
   double Scale() const { return this->Length; }
 
+  /// Axial placements (a surface of revolution about the mirror frame's z, the camera on that
+  /// axis): every reflection of P lies in the plane of the axis and P, where the camera ray's
+  /// elevation is the one unknown. AxialReflect finds all roots of the reflection equation along
+  /// the elevations that meet the mirror (bracketed, then regula falsi) and keeps the valid one
+  /// with the shortest optical path: true with status Valid (mirrorPoint set) or HiddenByMirror;
+  /// false when it has no answer (not axial, P on the axis, no reflection). Reflect uses it for
+  /// the quartic solver without a guess.
+  bool IsAxial() const { return this->Axial; }
+  bool AxialReflect(const Vec3& point, Vec3& mirrorPoint, ProjectionStatus& status) const;
+
 private:
   // Newton on the Lagrange system from r; true with the converged point in r.
   bool Newton(const Vec3& point, Vec3& r) const;
@@ -77,6 +87,11 @@ private:
   ProjectionStatus Check(const Vec3& point, const Vec3& r) const;
   // The first hit of the line origin + t d (t > tmin) with the mirror part: t, or -1.
   double FirstHit(const Vec3& origin, const Vec3& d, double tmin) const;
+  // In that plane (radial coordinate rho, axial z, mirror frame): the first point of the mirror
+  // on the camera ray of elevation theta (from the axis, towards +rho for theta > 0), and the
+  // reflection equation's residual there for the point (rhoP, zP); false when the ray misses.
+  bool AxialResidual(
+    double theta, double rhoP, double zP, double& residual, double& rho, double& z) const;
   bool InPart(const Vec3& r, double tolerance) const;
 
   MirrorDescription Description;
@@ -89,6 +104,13 @@ private:
   double Zmax = 0.0;
   double Length = 1.0;
   Vec3 EffectiveViewpoint = Vec3::Zero();
+  // Axial placements: the meridian alpha rho^2 + beta z^2 + 2 gamma z + delta = 0, the camera at
+  // z = AxialCamera on the axis, the frames, and the elevations that meet the mirror.
+  bool Axial = false;
+  double Alpha = 0.0, Beta = 0.0, Gamma = 0.0, Delta = 0.0, AxialCamera = 0.0;
+  Mat4 CameraToMirror = Mat4::Identity();
+  Mat4 MirrorToCameraFrame = Mat4::Identity();
+  double ThetaMax = 0.0; // rays of elevation in [0, ThetaMax] may meet the mirror
   // The table of back-projected rays: mirror points and reflected directions, and a map from the
   // direction seen from EffectiveViewpoint (a cube map, kMapSide^2 cells a face) to the table.
   std::vector<Vec3> TablePoints;
