@@ -511,6 +511,45 @@ QuadricSurface::QuadricSurface(const MirrorDescription& description, const Quadr
       widest = std::max(widest, std::atan2(std::hypot(m.x(), m.y()), m.z() - this->AxialCamera));
     }
     this->ThetaMax = std::min(kPi, widest + 2.0 * extent / n);
+    // The intervals of elevations whose rays meet the mirror, in the plane of any point (the
+    // residual's point does not matter for whether a ray hits): a scan, then each end refined
+    // to the rim by bisection.
+    auto hits = [&](double theta) {
+      double residual = 0.0, rho = 0.0, z = 0.0;
+      return this->AxialResidual(theta, 1.0, 0.0, residual, rho, z);
+    };
+    auto edge = [&](double inside, double outside) {
+      for (int k = 0; k < 64; ++k)
+      {
+        const double mid = 0.5 * (inside + outside);
+        (hits(mid) ? inside : outside) = mid;
+      }
+      return inside;
+    };
+    constexpr int kScan = 2000;
+    double start = 0.0;
+    bool inside = false;
+    double previous = -this->ThetaMax;
+    for (int i = 0; i <= kScan; ++i)
+    {
+      const double theta = this->ThetaMax * (2.0 * i / kScan - 1.0);
+      const bool hit = hits(theta);
+      if (hit && !inside)
+      {
+        start = i == 0 ? theta : edge(theta, previous);
+        inside = true;
+      }
+      else if (!hit && inside)
+      {
+        this->AxialIntervals.emplace_back(start, edge(previous, theta));
+        inside = false;
+      }
+      previous = theta;
+    }
+    if (inside)
+    {
+      this->AxialIntervals.emplace_back(start, this->ThetaMax);
+    }
   }
   this->Length = std::max(mean.norm(), 1e-300);
   // The map: each cell keeps the first of the table's rays whose direction falls in it; empty
@@ -879,12 +918,9 @@ bool QuadricSurface::AxialResidual(
     {
       return false;
     }
+    // Continuous through the root; it also vanishes where the reflection points straight away
+    // from the point, which Check tells apart.
     residual = (er * wz - ez * wr) / w;
-    // Reflected away from the point: no reflection there (the residual's sign would lie).
-    if (er * wr + ez * wz <= 0.0)
-    {
-      residual = std::numeric_limits<double>::quiet_NaN();
-    }
     return true;
   }
   return false;
@@ -900,11 +936,10 @@ bool QuadricSurface::AxialReflect(const Vec3& P, Vec3& mirrorPoint, ProjectionSt
   }
   const Vec3 er(m.x() / rhoP, m.y() / rhoP, 0.0); // the plane's radial direction
   const double zP = m.z();
-  // Elevations from -ThetaMax (the far side of the axis) to ThetaMax, sampled; sign changes of
-  // the residual between two samples that meet the mirror bracket the reflections. Where the
-  // samples pass the mirror's rim, the rim itself is found and sampled (a reflection next to the
-  // rim would fall between a sample that meets the mirror and one that misses it).
-  constexpr int kSamples = 96;
+  // The elevations whose rays meet the mirror, sampled interval by interval (their ends are on
+  // the rim, so a reflection next to the rim is bracketed too); sign changes of the residual
+  // between neighbouring samples bracket the reflections.
+  constexpr int kSamples = 24; // a sample interval
   double best = std::numeric_limits<double>::infinity();
   bool any = false;
   // A root bracketed by [t0, t1] (residuals f0, f1 of opposite signs): regula falsi with the
@@ -959,6 +994,8 @@ bool QuadricSurface::AxialReflect(const Vec3& P, Vec3& mirrorPoint, ProjectionSt
     const Vec3 rm = rhoR * er + Vec3(0.0, 0.0, zR);
     const Vec3 r =
       (this->MirrorToCameraFrame * Eigen::Vector4d(rm.x(), rm.y(), rm.z(), 1.0)).head<3>();
+    // Check tells a reflection that points away from the point (the residual's other zero):
+    // both rays must leave on the side of the normal they meet.
     const ProjectionStatus s = this->Check(P, r);
     if (s == ProjectionStatus::Valid)
     {
@@ -975,51 +1012,25 @@ bool QuadricSurface::AxialReflect(const Vec3& P, Vec3& mirrorPoint, ProjectionSt
       status = s;
     }
   };
-  // The residual at theta; hit says whether the ray meets the mirror at all.
-  auto sample = [&](double theta, bool& hit) {
-    double residual = std::numeric_limits<double>::quiet_NaN(), rho = 0.0, z = 0.0;
-    hit = this->AxialResidual(theta, rhoP, zP, residual, rho, z);
-    return hit ? residual : std::numeric_limits<double>::quiet_NaN();
-  };
-  // The elevation between a ray that meets the mirror (inside) and one that misses it.
-  auto rim = [&](double inside, double outside) {
-    for (int k = 0; k < 60; ++k)
-    {
-      const double mid = 0.5 * (inside + outside);
-      bool hit = false;
-      sample(mid, hit);
-      (hit ? inside : outside) = mid;
-    }
-    return inside;
-  };
-  double previousTheta = 0.0, previousResidual = std::numeric_limits<double>::quiet_NaN();
-  bool previousHit = false;
-  for (int i = 0; i <= kSamples; ++i)
+  for (const std::pair<double, double>& interval : this->AxialIntervals)
   {
-    const double theta = this->ThetaMax * (2.0 * i / kSamples - 1.0);
-    bool hit = false;
-    const double residual = sample(theta, hit);
-    if (i > 0 && hit != previousHit)
+    double previousTheta = 0.0, previousResidual = 0.0;
+    for (int i = 0; i <= kSamples; ++i)
     {
-      const double edge = hit ? rim(theta, previousTheta) : rim(previousTheta, theta);
-      bool edgeHit = false;
-      const double atEdge = sample(edge, edgeHit);
-      if (hit)
+      const double theta =
+        interval.first + (interval.second - interval.first) * i / static_cast<double>(kSamples);
+      double residual = std::numeric_limits<double>::quiet_NaN(), rho = 0.0, z = 0.0;
+      if (!this->AxialResidual(theta, rhoP, zP, residual, rho, z))
       {
-        consider(edge, atEdge, theta, residual);
+        residual = std::numeric_limits<double>::quiet_NaN();
       }
-      else
+      if (i > 0)
       {
-        consider(previousTheta, previousResidual, edge, atEdge);
+        consider(previousTheta, previousResidual, theta, residual);
       }
+      previousTheta = theta;
+      previousResidual = residual;
     }
-    else if (i > 0)
-    {
-      consider(previousTheta, previousResidual, theta, residual);
-    }
-    previousTheta = theta;
-    previousResidual = residual;
-    previousHit = hit;
   }
   if (any)
   {

@@ -111,6 +111,9 @@ private:
   Mat4 CameraToMirror = Mat4::Identity();
   Mat4 MirrorToCameraFrame = Mat4::Identity();
   double ThetaMax = 0.0; // rays of elevation in [0, ThetaMax] may meet the mirror
+  // The elevations (signed: negative towards -rho) whose rays meet the mirror: intervals
+  // [first, second], their ends on the rim to rounding (independent of the point).
+  std::vector<std::pair<double, double>> AxialIntervals;
   // The table of back-projected rays: mirror points and reflected directions, and a map from the
   // direction seen from EffectiveViewpoint (a cube map, kMapSide^2 cells a face) to the table.
   std::vector<Vec3> TablePoints;

@@ -86,6 +86,30 @@ void BM_ForwardProjectionQuadric(benchmark::State& state)
 }
 BENCHMARK(BM_ForwardProjectionQuadric)->Arg(0)->Arg(1);
 
+// An axial hyperboloid (the same, untilted: the camera on its axis) with the quartic solver: the
+// planar reduction, every root bracketed (0); and the iterative solver from its own start (1).
+void BM_ForwardProjectionAxialQuadric(benchmark::State& state)
+{
+  const SolverType solver = state.range(0) == 0 ? SolverType::Quartic : SolverType::Iterative;
+  state.SetLabel(solver == SolverType::Quartic ? "axial hyperboloid, planar reduction"
+                                               : "axial hyperboloid, Newton");
+  CameraModel model = catar_test::TiltedHyperboloidCameraModel();
+  std::vector<double>& p = model.mirror.parameters; // a, b, then mirror_to_camera (row-major)
+  const double untilted[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, p[2 + 11], 0, 0, 0, 1 };
+  std::copy(untilted, untilted + 16, p.begin() + 2);
+  const Projector proj(model);
+  const std::vector<Vec3> pts = ScenePoints(model, 1024);
+  for (auto _ : state)
+  {
+    for (const Vec3& q : pts)
+    {
+      benchmark::DoNotOptimize(proj.ProjectWorld(q, solver));
+    }
+  }
+  SetPerItem(state, pts.size());
+}
+BENCHMARK(BM_ForwardProjectionAxialQuadric)->Arg(0)->Arg(1);
+
 // Projection started from a nearby reflection point (what vtkCatadioptricProjection does for the
 // cells' centroids and, with the iterative solver, for each vertex after the first): the guess
 // is the reflection point of a point `range(0)` tenths of a millimetre away.
