@@ -1,17 +1,26 @@
 #!/bin/bash
-# Runs a command that opens an OpenGL window on the X display; if it fails because the window could
-# not be made (vtkXOpenGLRenderWindow reports it, e.g. "bad X server connection": the shared Xvfb
-# turns a connection away now and then under a parallel test run), runs it again, up to three
-# times in all. Any other failure is the command's own and is returned at once.
+# Runs a command that opens an OpenGL window on the X display (pvpython, the trade chart) and runs
+# it again, up to three times in all, when it could not start its window: vtkXOpenGLRenderWindow
+# reports it (e.g. "bad X server connection": the shared Xvfb turns a connection away now and then
+# under a parallel test run), or the process aborts before printing anything of its own (seen
+# once in about ten full parallel runs: SIGABRT one second in, no message). Every retry is
+# printed; a failure that repeats is returned.
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 for attempt in 1 2 3; do
   "$@" 2>&1 | tee "$log"
   status=${PIPESTATUS[0]}
-  if [[ $status -eq 0 ]] || ! grep -q "vtkXOpenGLRenderWindow" "$log"; then
+  if [[ $status -eq 0 ]]; then
+    exit 0
+  fi
+  if grep -q "vtkXOpenGLRenderWindow" "$log"; then
+    why="no OpenGL window on the X display"
+  elif [[ $status -ge 128 ]] && ! grep -qv -e "Loguru caught a signal" -e "^\s*$" -e $'^\e' "$log"; then
+    why="died by signal $((status - 128)) before any output of its own"
+  else
     exit "$status"
   fi
-  echo "RetryOnDisplayError: attempt $attempt: no OpenGL window on the X display; again" >&2
+  echo "RetryOnDisplayError: attempt $attempt: $why; again" >&2
   sleep 1
 done
 exit "$status"
