@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <string>
@@ -173,6 +174,10 @@ TEST(QuadricMirror, ReflectionLawOnEveryShapeAndPlacement)
       worstBack = std::max(worstBack,
         (w - w.dot(back.direction) * back.direction).norm() / std::max(w.norm(), 1e-300));
     }
+    std::cout << "[ quadric  ] " << c.name << ": " << valid << " of " << tried
+              << " projected; worst: on the quadric " << worstSurface << ", angles " << worstAngle
+              << " rad, coplanarity " << worstPlane << ", back projection " << worstBack
+              << std::endl;
     EXPECT_EQ(tried, 100000);
     EXPECT_GT(valid, 0.95 * tried) << valid << " of " << tried;
     EXPECT_LE(worstSurface, 1e-12);
