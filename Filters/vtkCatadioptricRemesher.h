@@ -139,6 +139,18 @@ public:
   const char* GetCalibrationFileName();
   ///@}
 
+  ///@{
+  /// A mirror in place of the camera's (ParaView's panel sets these): a type of
+  /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
+  /// that type's numbers in the order of its keys (README, "Calibration files").
+  void SetMirrorType(const char* type);
+  const char* GetMirrorType();
+  void SetNumberOfMirrorParameters(int n);
+  void SetMirrorParameter(int i, double value);
+  int GetNumberOfMirrorParameters();
+  double GetMirrorParameter(int i);
+  ///@}
+
   /// The modification time includes the camera's.
   vtkMTimeType GetMTime() override;
 

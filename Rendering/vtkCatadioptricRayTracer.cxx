@@ -59,6 +59,8 @@ void vtkCatadioptricRayTracer::SetCalibrationFileName(const char* fileName)
   }
 }
 
+vtkCatadioptricCameraSlotMirrorMacro(vtkCatadioptricRayTracer);
+
 const char* vtkCatadioptricRayTracer::GetCalibrationFileName()
 {
   return this->CameraSlot.GetCalibrationFileName();

@@ -63,6 +63,18 @@ public:
   ///@}
 
   ///@{
+  /// A mirror in place of the camera's (ParaView's panel sets these): a type of
+  /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
+  /// that type's numbers in the order of its keys (README, "Calibration files").
+  void SetMirrorType(const char* type);
+  const char* GetMirrorType();
+  void SetNumberOfMirrorParameters(int n);
+  void SetMirrorParameter(int i, double value);
+  int GetNumberOfMirrorParameters();
+  double GetMirrorParameter(int i);
+  ///@}
+
+  ///@{
   /// Lighting of mesh `index` (its connection on port 1) from a vtkCatadioptricLighting filter's
   /// parameters; null: unlit. The filter is not run.
   void SetMeshLighting(int index, vtkCatadioptricLighting* lighting);

@@ -2,8 +2,11 @@
 
 #include "CalibrationIO.h"
 #include "CameraModel.h"
+#include "Mirror.h"
 
 #include "vtkCatadioptricCamera.h"
+
+#include <algorithm>
 
 vtkCatadioptricCameraSlot::vtkCatadioptricCameraSlot() = default;
 vtkCatadioptricCameraSlot::~vtkCatadioptricCameraSlot() = default;
@@ -44,7 +47,82 @@ vtkMTimeType vtkCatadioptricCameraSlot::GetCameraMTime() const
   return this->Camera ? this->Camera->GetMTime() : 0;
 }
 
+bool vtkCatadioptricCameraSlot::SetMirrorType(const char* type)
+{
+  const std::string name = type ? type : "";
+  if (name == this->MirrorType)
+  {
+    return false;
+  }
+  this->MirrorType = name;
+  this->MirrorChanged = true;
+  return true;
+}
+
+bool vtkCatadioptricCameraSlot::SetNumberOfMirrorParameters(int n)
+{
+  // At most the largest type's count (the quadric's 34) and a little more: the rest is an error
+  // at Resolve, not an allocation.
+  n = std::max(0, std::min(n, 64));
+  if (n == static_cast<int>(this->MirrorParameters.size()))
+  {
+    return false;
+  }
+  this->MirrorParameters.resize(static_cast<std::size_t>(n), 0.0);
+  this->MirrorChanged = true;
+  return true;
+}
+
+bool vtkCatadioptricCameraSlot::SetMirrorParameter(int i, double value)
+{
+  if (i < 0 || i >= static_cast<int>(this->MirrorParameters.size()) ||
+    this->MirrorParameters[i] == value)
+  {
+    return false;
+  }
+  this->MirrorParameters[i] = value;
+  this->MirrorChanged = true;
+  return true;
+}
+
+double vtkCatadioptricCameraSlot::GetMirrorParameter(int i) const
+{
+  return i >= 0 && i < static_cast<int>(this->MirrorParameters.size()) ? this->MirrorParameters[i]
+                                                                       : 0.0;
+}
+
 vtkCatadioptricCamera* vtkCatadioptricCameraSlot::Resolve(std::string& error)
+{
+  vtkCatadioptricCamera* base = this->ResolveBase(error);
+  if (!base || this->MirrorType.empty())
+  {
+    return base;
+  }
+  // The base camera with the mirror replaced, remade only when either changed.
+  if (this->MirrorChanged || !this->MirrorCamera || this->MirrorCameraFrom != base ||
+    this->MirrorCameraBase != base->GetMTime())
+  {
+    catar::CameraModel model = base->GetModel();
+    model.mirror = catar::MirrorDescription(this->MirrorType, this->MirrorParameters);
+    const std::string problem = catar::ValidateMirror(model.mirror);
+    if (!problem.empty())
+    {
+      error = "MirrorType '" + this->MirrorType + "' with MirrorParameters: " + problem;
+      return nullptr;
+    }
+    if (!this->MirrorCamera)
+    {
+      this->MirrorCamera = vtkSmartPointer<vtkCatadioptricCamera>::New();
+    }
+    this->MirrorCamera->SetModel(model);
+    this->MirrorCameraFrom = base;
+    this->MirrorCameraBase = base->GetMTime();
+    this->MirrorChanged = false;
+  }
+  return this->MirrorCamera;
+}
+
+vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolveBase(std::string& error)
 {
   if (this->Camera)
   {

@@ -15,6 +15,7 @@
 #include "vtkType.h"                    // for vtkMTimeType
 
 #include <string> // for members
+#include <vector> // for members
 
 class vtkCatadioptricCamera;
 
@@ -36,11 +37,33 @@ public:
   /// The camera object's modification time (0 without one).
   vtkMTimeType GetCameraMTime() const;
 
-  /// The camera to use now: the object if set, else the one loaded from the file. Returns nullptr
-  /// and says why in `error` when neither gives a camera.
+  /// A mirror in place of the camera's (for ParaView's panel): a type ("" for the camera's own)
+  /// and its numbers. Setters return true when they changed something.
+  bool SetMirrorType(const char* type);
+  const char* GetMirrorType() const { return this->MirrorType.c_str(); }
+  bool SetNumberOfMirrorParameters(int n);
+  bool SetMirrorParameter(int i, double value);
+  int GetNumberOfMirrorParameters() const
+  {
+    return static_cast<int>(this->MirrorParameters.size());
+  }
+  double GetMirrorParameter(int i) const;
+
+  /// The camera to use now: the object if set, else the one loaded from the file; with the mirror
+  /// replaced when a mirror type is set. Returns nullptr and says why in `error` when neither
+  /// gives a camera, or the mirror is not a usable one of its type.
   vtkCatadioptricCamera* Resolve(std::string& error);
 
 private:
+  vtkCatadioptricCamera* ResolveBase(std::string& error);
+
+  std::string MirrorType;
+  std::vector<double> MirrorParameters;
+  vtkSmartPointer<vtkCatadioptricCamera> MirrorCamera; // the camera with the mirror replaced
+  vtkMTimeType MirrorCameraBase = 0;                   // the base camera's time it was made from
+  vtkCatadioptricCamera* MirrorCameraFrom = nullptr;
+  bool MirrorChanged = true;
+
   vtkSmartPointer<vtkCatadioptricCamera> Camera;
   std::string FileName;
   vtkSmartPointer<vtkCatadioptricCamera> FileCamera;
@@ -48,10 +71,51 @@ private:
 };
 
 /**
+ * Defines, in a .cxx, the mirror override of an algorithm that holds a
+ * `vtkCatadioptricCameraSlot CameraSlot`: SetMirrorType, SetNumberOfMirrorParameters,
+ * SetMirrorParameter and their getters (part of vtkCatadioptricCameraSlotMacro).
+ */
+#define vtkCatadioptricCameraSlotMirrorMacro(thisClass)                                            \
+  void thisClass::SetMirrorType(const char* type)                                                  \
+  {                                                                                                \
+    if (this->CameraSlot.SetMirrorType(type))                                                      \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  const char* thisClass::GetMirrorType()                                                           \
+  {                                                                                                \
+    return this->CameraSlot.GetMirrorType();                                                       \
+  }                                                                                                \
+  void thisClass::SetNumberOfMirrorParameters(int n)                                               \
+  {                                                                                                \
+    if (this->CameraSlot.SetNumberOfMirrorParameters(n))                                           \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void thisClass::SetMirrorParameter(int i, double value)                                          \
+  {                                                                                                \
+    if (this->CameraSlot.SetMirrorParameter(i, value))                                             \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  int thisClass::GetNumberOfMirrorParameters()                                                     \
+  {                                                                                                \
+    return this->CameraSlot.GetNumberOfMirrorParameters();                                         \
+  }                                                                                                \
+  double thisClass::GetMirrorParameter(int i)                                                      \
+  {                                                                                                \
+    return this->CameraSlot.GetMirrorParameter(i);                                                 \
+  }
+
+/**
  * Defines, in a .cxx, the camera members of an algorithm that holds a
  * `vtkCatadioptricCameraSlot CameraSlot`: SetCamera, GetCamera, SetCalibrationFileName,
- * GetCalibrationFileName, GetMTime (including the camera's) and ResolveCamera (reports failures
- * with vtkErrorMacro).
+ * GetCalibrationFileName, the mirror override (SetMirrorType, SetNumberOfMirrorParameters,
+ * SetMirrorParameter and their getters), GetMTime (including the camera's) and ResolveCamera
+ * (reports failures with vtkErrorMacro).
  */
 #define vtkCatadioptricCameraSlotMacro(thisClass)                                                  \
   void thisClass::SetCamera(vtkCatadioptricCamera* camera)                                         \
@@ -82,7 +146,8 @@ private:
     const vtkMTimeType camera = this->CameraSlot.GetCameraMTime();                                 \
     return own > camera ? own : camera;                                                            \
   }                                                                                                \
-  vtkCatadioptricCamera* thisClass::ResolveCamera()                                                \
+  vtkCatadioptricCameraSlotMirrorMacro(thisClass) vtkCatadioptricCamera*                           \
+  thisClass::ResolveCamera()                                                                       \
   {                                                                                                \
     std::string error;                                                                             \
     vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error);                               \

@@ -21,6 +21,7 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "TestCameras.h"
 #include "TestUtilities.h"
 
 #include <Eigen/Geometry> // cross products
@@ -132,6 +133,65 @@ TEST(vtkCatadioptricCamera, MirrorByTypeAndKey)
   cam->WriteToFieldData(fd);
   vtkDataArray::SafeDownCast(fd->GetAbstractArray("MirrorParameters"))->SetNumberOfTuples(3);
   EXPECT_FALSE(back->ReadFromFieldData(fd));
+}
+
+// The mirror override (ParaView's Mirror Type and Mirror Parameters): the projection of a camera
+// whose mirror is replaced is the projection with that mirror; wrong numbers are an error; an
+// empty type gives the camera's own mirror back.
+TEST(vtkCatadioptricProjection, MirrorOverride)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.06, -0.32, 0.92);
+  sphere->SetRadius(0.03);
+  auto sphereCamera = catar_test::DemoCamera();
+  vtkNew<vtkCatadioptricCamera> hyperboloid;
+  hyperboloid->SetModel(catar_test::TiltedHyperboloidCameraModel());
+  const catar::MirrorDescription mirror = catar_test::TiltedHyperboloidCameraModel().mirror;
+
+  vtkNew<vtkCatadioptricProjection> direct;
+  direct->SetInputConnection(sphere->GetOutputPort());
+  direct->SetCamera(hyperboloid);
+  direct->Update();
+  vtkNew<vtkCatadioptricProjection> overridden;
+  overridden->SetInputConnection(sphere->GetOutputPort());
+  overridden->SetCamera(sphereCamera);
+  overridden->SetMirrorType(mirror.type.c_str());
+  overridden->SetNumberOfMirrorParameters(static_cast<int>(mirror.parameters.size()));
+  for (std::size_t i = 0; i < mirror.parameters.size(); ++i)
+  {
+    overridden->SetMirrorParameter(static_cast<int>(i), mirror.parameters[i]);
+  }
+  overridden->Update();
+  vtkDataArray* a = direct->GetOutput()->GetPointData()->GetArray("ImageCoordinates");
+  vtkDataArray* b = overridden->GetOutput()->GetPointData()->GetArray("ImageCoordinates");
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    EXPECT_EQ(a->GetComponent(i, 0), b->GetComponent(i, 0)) << i;
+    EXPECT_EQ(a->GetComponent(i, 1), b->GetComponent(i, 1)) << i;
+  }
+  // The output's camera is the hyperboloid's.
+  vtkNew<vtkCatadioptricCamera> fromField;
+  ASSERT_TRUE(fromField->ReadFromFieldData(overridden->GetOutput()->GetFieldData()));
+  EXPECT_EQ(fromField->GetModel().mirror, mirror);
+
+  // One number short: an error, no output.
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(overridden);
+  overridden->SetNumberOfMirrorParameters(static_cast<int>(mirror.parameters.size()) - 1);
+  overridden->Update();
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("takes 20 numbers"), std::string::npos) << errors->Last;
+  // No type: the camera's own sphere again.
+  overridden->SetMirrorType("");
+  overridden->Update();
+  vtkNew<vtkCatadioptricProjection> plain;
+  plain->SetInputConnection(sphere->GetOutputPort());
+  plain->SetCamera(sphereCamera);
+  plain->Update();
+  EXPECT_EQ(plain->GetOutput()->GetPointData()->GetArray("ImageCoordinates")->GetComponent(5, 0),
+    overridden->GetOutput()->GetPointData()->GetArray("ImageCoordinates")->GetComponent(5, 0));
 }
 
 TEST(vtkCatadioptricProjection, ArraysMatchTheCoreProjection)

@@ -118,9 +118,24 @@ def main():
         assert camera.ProjectWorldPoint([0.06, -0.32, 0.92], px, mp) == 0
         x, y = int(round(px[0])), int(round(px[1]))
         assert fast.GetTuple4((dims[1] - 1 - y) * dims[0] + x) == (255.0, 0.0, 255.0, 255.0), px
+        # The same mirror chosen in the panel (Mirror Type, Mirror Parameters) over the sphere's
+        # calibration file: the same pictures.
+        tilt = (1, 0, 0, 0, 0, 0.9975640502598242, -0.0697564737441253, 0,
+                0, 0.0697564737441253, 0.9975640502598242, 0.05, 0, 0, 0, 1)
         for proxy in (projection, frame, tracer):
             proxy.CalibrationFileName = calib
+            proxy.MirrorType = "hyperboloid"
+            proxy.MirrorParameters = [0.03, 0.04] + list(tilt) + [0.03, 0.07]
         compositor.UpdatePipeline()
+        tracer.UpdatePipeline()
+        panelFast = count(servermanager.Fetch(compositor).GetPointData().GetScalars())
+        panelExact = count(servermanager.Fetch(tracer).GetPointData().GetScalars())
+        assert (panelFast, panelExact) == (hyperMagenta, hyperExact), (panelFast, panelExact)
+        for proxy in (projection, frame, tracer):
+            proxy.MirrorType = ""
+            proxy.MirrorParameters = []
+        compositor.UpdatePipeline()
+        assert count(servermanager.Fetch(compositor).GetPointData().GetScalars()) == magenta
 
         # Shown in a render view without a frame: no error at all (the image views used to print
         # "Incorrect dimensionality": the extent announced before the data was 1x1).
