@@ -32,6 +32,25 @@ MirrorDescription ReadMirror(const Node& mirror)
   }
   const std::string typeName = String(mirror, "type", fallback.name);
   const MirrorType* type = FindMirrorType(typeName);
+  // Of a name's variants, the first whose keys are all there (else the first, whose missing key
+  // the error names).
+  for (const MirrorType& t : MirrorTypes())
+  {
+    if (t.name != typeName)
+    {
+      continue;
+    }
+    bool all = true;
+    for (const MirrorParameter& p : t.parameters)
+    {
+      all = all && !mirror[p.key].empty();
+    }
+    if (all)
+    {
+      type = &t;
+      break;
+    }
+  }
   if (!type)
   {
     throw ParseError(
@@ -155,7 +174,7 @@ void WriteStorage(cv::FileStorage& out, const CameraModel& m)
   out << "mirror"
       << "{";
   out << "type" << m.mirror.type;
-  if (const MirrorType* type = FindMirrorType(m.mirror.type))
+  if (const MirrorType* type = FindMirrorType(m.mirror.type, m.mirror.parameters.size()))
   {
     std::size_t i = 0;
     for (const MirrorParameter& p : type->parameters)

@@ -85,12 +85,27 @@ const MirrorType* FindMirrorType(const std::string& name)
   return nullptr;
 }
 
+const MirrorType* FindMirrorType(const std::string& name, std::size_t count)
+{
+  for (const MirrorType& t : MirrorTypes())
+  {
+    if (t.name == name && static_cast<std::size_t>(t.ParameterCount()) == count)
+    {
+      return &t;
+    }
+  }
+  return nullptr;
+}
+
 std::string MirrorTypeNames()
 {
   std::string names;
   for (const MirrorType& t : MirrorTypes())
   {
-    names += (names.empty() ? "" : ", ") + t.name;
+    if (FindMirrorType(t.name) == &t) // each name once
+    {
+      names += (names.empty() ? "" : ", ") + t.name;
+    }
   }
   return names;
 }
@@ -104,7 +119,11 @@ std::string ValidateMirror(const MirrorDescription& description)
     err << "unknown mirror type '" << description.type << "' (known: " << MirrorTypeNames() << ")";
     return err.str();
   }
-  if (static_cast<int>(description.parameters.size()) != type->ParameterCount())
+  if (const MirrorType* variant = FindMirrorType(description.type, description.parameters.size()))
+  {
+    type = variant;
+  }
+  else
   {
     err << "a " << type->name << " mirror takes " << type->ParameterCount() << " numbers, not "
         << description.parameters.size();
@@ -127,6 +146,6 @@ std::shared_ptr<const Mirror> MakeMirror(const MirrorDescription& description, s
   {
     return nullptr;
   }
-  return FindMirrorType(description.type)->make(description);
+  return FindMirrorType(description.type, description.parameters.size())->make(description);
 }
 } // namespace catar

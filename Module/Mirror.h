@@ -91,8 +91,11 @@ struct MirrorType
 
 /// Every mirror type, the default first (MirrorTypes.cxx lists them).
 const std::vector<MirrorType>& MirrorTypes();
-/// The type of that name, or nullptr.
+/// The type of that name, or nullptr. A name may have variants that differ in their keys (the
+/// closed-form sphere takes center and radius, the sphere cut by z_range radius,
+/// mirror_to_camera and z_range): the first, or the one with that many numbers.
 const MirrorType* FindMirrorType(const std::string& name);
+const MirrorType* FindMirrorType(const std::string& name, std::size_t count);
 /// "sphere, ..." : the names, for messages.
 std::string MirrorTypeNames();
 

@@ -119,6 +119,18 @@ bool ShapeOmega(const std::string& type, const double* p, Mat4& omega, std::stri
     omega.diagonal() = Vec4(1.0 / (p[0] * p[0]), 1.0 / (p[1] * p[1]), 1.0 / (p[2] * p[2]), -1.0);
     return true;
   }
+  if (type == "sphere")
+  {
+    if (!(p[0] > 0.0))
+    {
+      err << "mirror.radius must be positive (" << p[0] << ")";
+      error = err.str();
+      return false;
+    }
+    omega = Mat4::Identity();
+    omega(3, 3) = -p[0] * p[0];
+    return true;
+  }
   if (type == "cone")
   {
     if (!(p[0] > 0.0 && p[0] < 90.0))
@@ -149,7 +161,7 @@ int ShapeCount(const std::string& type)
   {
     return 3;
   }
-  if (type == "paraboloid" || type == "cone")
+  if (type == "paraboloid" || type == "cone" || type == "sphere")
   {
     return 1;
   }
@@ -343,6 +355,14 @@ std::vector<MirrorType> QuadricMirrorTypes()
       { { "semi_axes", 3, "ax, ay, az" } },
       WithTail({ 0.03, 0.03, 0.02 }, Translation(0, 0, 0.15), -0.02, 0.02));
     t.validate = [](const std::vector<double>& p) { return ValidateQuadric("ellipsoid", p); };
+    types.push_back(t);
+  }
+  {
+    // The sphere cut by z_range (the closed-form type of the same name takes center and radius).
+    MirrorType t = MakeType("sphere", "x^2 + y^2 + z^2 = radius^2, cut by z_range",
+      { { "radius", 1, "the sphere's radius" } },
+      WithTail({ 0.05 }, Translation(0, 0, 0.2), -0.05, 0.0));
+    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("sphere", p); };
     types.push_back(t);
   }
   {

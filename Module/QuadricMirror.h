@@ -9,7 +9,9 @@
 //                         foci z = +-sqrt(a^2 + b^2));
 //  - paraboloid focal f:  x^2 + y^2 - 4 f (z + f) = 0 (focus at the origin, vertex z = -f);
 //  - ellipsoid semi_axes (ax, ay, az): x^2 / ax^2 + y^2 / ay^2 + z^2 / az^2 - 1 = 0;
-//  - cone half_angle t (degrees): x^2 + y^2 - tan(t)^2 z^2 = 0 (apex at the origin).
+//  - cone half_angle t (degrees): x^2 + y^2 - tan(t)^2 z^2 = 0 (apex at the origin);
+//  - sphere radius r: x^2 + y^2 + z^2 - r^2 = 0, cut by z_range (a variant of the closed-form
+//    sphere type, told apart by its keys).
 // Each is written so that it is negative inside (the bowl's side of a sheet, the solid of an
 // ellipsoid); a given Omega must follow the same sign (README, "Calibration files").
 //
@@ -43,7 +45,7 @@ struct QuadricGeometry
 };
 
 /// The geometry of a description of one of the quadric types ("quadric", "hyperboloid",
-/// "paraboloid", "ellipsoid", "cone"); false for another type or a wrong count.
+/// "paraboloid", "ellipsoid", "cone", the cut "sphere"); false for another type or a wrong count.
 bool QuadricFromDescription(const MirrorDescription& description, QuadricGeometry& geometry);
 
 /// The catalogue entries of the quadric types (MirrorTypes.cxx).

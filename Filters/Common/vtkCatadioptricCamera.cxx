@@ -156,9 +156,19 @@ std::vector<std::string> vtkCatadioptricCamera::GetMirrorParameterKeys(const cha
   return keys;
 }
 
+namespace
+{
+// The variant of a type the numbers are for (the first when their count fits none).
+const catar::MirrorType* Variant(const std::string& type, std::size_t count)
+{
+  const catar::MirrorType* t = catar::FindMirrorType(type, count);
+  return t ? t : catar::FindMirrorType(type);
+}
+} // namespace
+
 bool vtkCatadioptricCamera::SetMirrorParameter(const char* key, const std::vector<double>& values)
 {
-  const catar::MirrorType* t = catar::FindMirrorType(this->MirrorType);
+  const catar::MirrorType* t = Variant(this->MirrorType, this->MirrorParameters.size());
   const catar::MirrorParameter* p = t && key ? t->FindParameter(key) : nullptr;
   if (!p || static_cast<int>(values.size()) != p->count)
   {
@@ -189,7 +199,7 @@ bool vtkCatadioptricCamera::SetMirrorParameter(const char* key, double value)
 
 std::vector<double> vtkCatadioptricCamera::GetMirrorParameter(const char* key)
 {
-  const catar::MirrorType* t = catar::FindMirrorType(this->MirrorType);
+  const catar::MirrorType* t = Variant(this->MirrorType, this->MirrorParameters.size());
   const catar::MirrorParameter* p = t && key ? t->FindParameter(key) : nullptr;
   if (!p || static_cast<int>(this->MirrorParameters.size()) != t->ParameterCount())
   {
@@ -201,9 +211,11 @@ std::vector<double> vtkCatadioptricCamera::GetMirrorParameter(const char* key)
 
 bool vtkCatadioptricCamera::SetMirrorParameters(const std::vector<double>& values)
 {
-  const catar::MirrorType* t = catar::FindMirrorType(this->MirrorType);
-  if (!t || static_cast<int>(values.size()) != t->ParameterCount())
+  // Any variant of the type whose count the numbers have (see catar::FindMirrorType).
+  const catar::MirrorType* t = catar::FindMirrorType(this->MirrorType, values.size());
+  if (!t)
   {
+    t = catar::FindMirrorType(this->MirrorType);
     this->LastError = "a " + this->MirrorType + " mirror takes " +
       std::to_string(t ? t->ParameterCount() : 0) + " numbers, not " +
       std::to_string(values.size());
@@ -416,8 +428,11 @@ bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
   double intr[7], dist[5], pose[16];
   vtkStringArray* typeArray =
     fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(kMirrorTypeName)) : nullptr;
-  const catar::MirrorType* type = typeArray && typeArray->GetNumberOfValues() == 1
-    ? catar::FindMirrorType(typeArray->GetValue(0))
+  vtkDataArray* parameterArray =
+    fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(kMirrorParametersName)) : nullptr;
+  const catar::MirrorType* type = typeArray && typeArray->GetNumberOfValues() == 1 && parameterArray
+    ? catar::FindMirrorType(
+        typeArray->GetValue(0), static_cast<std::size_t>(parameterArray->GetNumberOfValues()))
     : nullptr;
   std::vector<double> mirror(type ? static_cast<std::size_t>(type->ParameterCount()) : 0);
   if (!GetArray(fd, kIntrinsicsName, intr, 7) || !GetArray(fd, kDistortionName, dist, 5) || !type ||

@@ -21,7 +21,7 @@ TEST(MirrorTypes, EveryTypeDescribesItselfConsistently)
   for (const MirrorType& t : MirrorTypes())
   {
     SCOPED_TRACE(t.name);
-    EXPECT_EQ(FindMirrorType(t.name), &t);
+    EXPECT_EQ(FindMirrorType(t.name, static_cast<std::size_t>(t.ParameterCount())), &t);
     EXPECT_EQ(static_cast<int>(t.defaults.size()), t.ParameterCount());
     ASSERT_TRUE(t.make && t.validate);
     int offset = 0;

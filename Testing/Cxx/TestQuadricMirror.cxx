@@ -98,6 +98,8 @@ std::vector<Case> Cases()
     Mat4 sphere = Mat4::Identity();
     sphere(3, 3) = -0.05 * 0.05;
     std::vector<double> omega(sphere.data(), sphere.data() + 16);
+    cases.push_back({ "cut sphere" + suffix,
+      Shape("sphere", { 0.05 }, Placement(p.tilt, Vec3(0, 0, 0.2) + p.shift), -0.05, 0.01) });
     cases.push_back({ "quadric sphere" + suffix,
       Shape("quadric", omega, Placement(p.tilt, Vec3(0, 0, 0.2) + p.shift), -0.05, 0.05) });
   }
