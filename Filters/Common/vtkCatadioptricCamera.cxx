@@ -138,7 +138,10 @@ std::vector<std::string> vtkCatadioptricCamera::GetMirrorTypes()
   std::vector<std::string> names;
   for (const catar::MirrorType& t : catar::MirrorTypes())
   {
-    names.push_back(t.name);
+    if (catar::FindMirrorType(t.name) == &t) // a name with variants once
+    {
+      names.push_back(t.name);
+    }
   }
   return names;
 }

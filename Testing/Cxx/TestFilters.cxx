@@ -34,6 +34,7 @@
 #include <cstring>
 #include <numeric>
 #include <random>
+#include <set>
 #include <vector>
 
 namespace
@@ -93,6 +94,8 @@ TEST(vtkCatadioptricCamera, MirrorByTypeAndKey)
   vtkNew<vtkCatadioptricCamera> cam;
   // The default is the demo rig's mirror, the first type.
   EXPECT_EQ(std::string(cam->GetMirrorType()), vtkCatadioptricCamera::GetMirrorTypes().front());
+  const std::vector<std::string> types = vtkCatadioptricCamera::GetMirrorTypes();
+  EXPECT_EQ(std::set<std::string>(types.begin(), types.end()).size(), types.size()); // once each
   const std::vector<std::string> keys = vtkCatadioptricCamera::GetMirrorParameterKeys("sphere");
   ASSERT_EQ(keys, (std::vector<std::string>{ "center", "radius" }));
   EXPECT_EQ(cam->GetMirrorParameters(), (std::vector<double>{ 0.0, 0.0, 0.14, 0.05 }));
