@@ -26,6 +26,22 @@ def demo_camera():
     return cam
 
 
+def sorted_sphere(cam, resolution=(32, 16)):
+    """A small sphere at (0.06, -0.32, 0.92), projected through cam and painter-sorted: the
+    source and the sort (whose output the compositor draws)."""
+    sphere = vtkSphereSource()
+    sphere.SetCenter(0.06, -0.32, 0.92)
+    sphere.SetRadius(0.03)
+    sphere.SetThetaResolution(resolution[0])
+    sphere.SetPhiResolution(resolution[1])
+    projection = car.vtkCatadioptricProjection()
+    projection.SetCamera(cam)
+    projection.SetInputConnection(sphere.GetOutputPort())
+    sort = car.vtkCatadioptricPainterSort()
+    sort.SetInputConnection(projection.GetOutputPort())
+    return sphere, sort
+
+
 def pixel(image, x, y):
     """RGBA of pixel (x right, y down) of a VTK image (row 0 at the bottom)."""
     w, h, _ = image.GetDimensions()
@@ -67,17 +83,7 @@ class PipelineTest(unittest.TestCase):
     def test_pipeline_draws_the_sphere_where_it_projects(self):
         cam = demo_camera()
         centre = [0.06, -0.32, 0.92]
-        sphere = vtkSphereSource()
-        sphere.SetCenter(centre)
-        sphere.SetRadius(0.03)
-        sphere.SetThetaResolution(32)
-        sphere.SetPhiResolution(16)
-
-        projection = car.vtkCatadioptricProjection()
-        projection.SetCamera(cam)
-        projection.SetInputConnection(sphere.GetOutputPort())
-        sort = car.vtkCatadioptricPainterSort()
-        sort.SetInputConnection(projection.GetOutputPort())
+        sphere, sort = sorted_sphere(cam)
         sort.DropInvisibleCellsOn()
         frame = car.vtkCatadioptricEnvironmentSource()
         frame.SetCamera(cam)
@@ -129,16 +135,7 @@ class PipelineTest(unittest.TestCase):
         tilted.SetImageHeight(cam.GetImageHeight())
         tilted.SetFocalLength(cam.GetFocalLength())
         tilted.SetPrincipalPoint(cam.GetPrincipalPoint())
-        sphere = vtkSphereSource()
-        sphere.SetCenter(0.06, -0.32, 0.92)
-        sphere.SetRadius(0.03)
-        sphere.SetThetaResolution(64)
-        sphere.SetPhiResolution(32)
-        projection = car.vtkCatadioptricProjection()
-        projection.SetCamera(tilted)
-        projection.SetInputConnection(sphere.GetOutputPort())
-        sort = car.vtkCatadioptricPainterSort()
-        sort.SetInputConnection(projection.GetOutputPort())
+        sphere, sort = sorted_sphere(tilted, (64, 32))
         compositor = car.vtkCatadioptricCompositor()
         compositor.AddMeshConnection(sort.GetOutputPort())
         compositor.SetColor(1.0, 0.0, 1.0)
