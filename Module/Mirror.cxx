@@ -136,7 +136,7 @@ std::string ValidateMirror(const MirrorDescription& description)
       return "mirror contains NaN or Inf";
     }
   }
-  return type->validate ? type->validate(description.parameters) : std::string();
+  return type->validate ? type->validate(description) : std::string();
 }
 
 std::shared_ptr<const Mirror> MakeMirror(const MirrorDescription& description, std::string& error)

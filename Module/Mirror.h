@@ -76,9 +76,9 @@ struct MirrorType
   std::string help;
   std::vector<MirrorParameter> parameters;
   std::vector<double> defaults;
-  /// Empty when the numbers describe a usable mirror for a camera at the origin; otherwise a
-  /// sentence that says what is wrong. Called with exactly the parameters' count of numbers.
-  std::string (*validate)(const std::vector<double>& parameters) = nullptr;
+  /// Empty when the description (of this type, with exactly its count of finite numbers) is a
+  /// usable mirror for a camera at the origin; otherwise a sentence that says what is wrong.
+  std::string (*validate)(const MirrorDescription& description) = nullptr;
   /// The model of a valid description.
   std::shared_ptr<const Mirror> (*make)(const MirrorDescription& description) = nullptr;
 

@@ -171,16 +171,14 @@ int ShapeCount(const std::string& type)
 std::shared_ptr<const detail::QuadricSurface> Build(
   const MirrorDescription& description, const QuadricGeometry& geometry);
 
-std::string ValidateQuadric(const std::string& type, const std::vector<double>& p)
+std::string ValidateQuadric(const MirrorDescription& d)
 {
-  const MirrorDescription d(type, p);
   QuadricGeometry g;
   std::string error;
-  if (!ShapeOmega(type, p.data(), g.omega, error))
+  if (!QuadricFromDescription(d, g, &error) || !error.empty())
   {
-    return error;
+    return error.empty() ? "not a quadric mirror: " + d.type : error;
   }
-  QuadricFromDescription(d, g);
   error = g.Validate();
   if (!error.empty())
   {
@@ -229,7 +227,7 @@ MirrorType MakeType(const std::string& name, const std::string& help,
   t.help = help;
   t.parameters = WithTail(std::move(shape));
   t.defaults = std::move(defaults);
-  t.validate = nullptr; // set by the caller: a plain function pointer per type
+  t.validate = &ValidateQuadric;
   t.make = [](const MirrorDescription& d) -> std::shared_ptr<const Mirror> {
     QuadricGeometry g;
     QuadricFromDescription(d, g);
@@ -296,7 +294,8 @@ std::string QuadricGeometry::Validate() const
   return std::string();
 }
 
-bool QuadricFromDescription(const MirrorDescription& description, QuadricGeometry& g)
+bool QuadricFromDescription(
+  const MirrorDescription& description, QuadricGeometry& g, std::string* shapeError)
 {
   const int shape = ShapeCount(description.type);
   if (shape < 0 || static_cast<int>(description.parameters.size()) != shape + kTail)
@@ -304,10 +303,14 @@ bool QuadricFromDescription(const MirrorDescription& description, QuadricGeometr
     return false;
   }
   const double* p = description.parameters.data();
-  std::string ignored;
-  if (!ShapeOmega(description.type, p, g.omega, ignored))
+  std::string error;
+  if (!ShapeOmega(description.type, p, g.omega, error))
   {
     g.omega.setZero();
+    if (shapeError)
+    {
+      *shapeError = error;
+    }
   }
   g.mirrorToCamera = RowMajor4(p + shape);
   g.zmin = p[shape + 16];
@@ -329,7 +332,6 @@ std::vector<MirrorType> QuadricMirrorTypes()
       "any quadric X^T Omega X = 0 (mirror frame, negative inside), placed by mirror_to_camera",
       { { "matrix", 16, "Omega, symmetric, row-major" } },
       WithTail(shape, Translation(0, 0, 0.2), -0.05, 0.05));
-    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("quadric", p); };
     types.push_back(t);
   }
   {
@@ -339,7 +341,6 @@ std::vector<MirrorType> QuadricMirrorTypes()
       "a sheet of (x^2 + y^2) / b^2 - z^2 / a^2 + 1 = 0 (foci at z = +-sqrt(a^2 + b^2))",
       { { "a", 1, "semi-axis along z (vertices at z = +-a)" }, { "b", 1, "semi-axis across z" } },
       WithTail({ 0.02, 0.03 }, Translation(0, 0, c), 0.02, 0.05));
-    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("hyperboloid", p); };
     types.push_back(t);
   }
   {
@@ -347,14 +348,12 @@ std::vector<MirrorType> QuadricMirrorTypes()
       "x^2 + y^2 = 4 focal (z + focal): focus at the origin, vertex at z = -focal",
       { { "focal", 1, "the focal distance" } },
       WithTail({ 0.01 }, Translation(0, 0, 0.1), -0.01, 0.02));
-    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("paraboloid", p); };
     types.push_back(t);
   }
   {
     MirrorType t = MakeType("ellipsoid", "x^2 / ax^2 + y^2 / ay^2 + z^2 / az^2 = 1",
       { { "semi_axes", 3, "ax, ay, az" } },
       WithTail({ 0.03, 0.03, 0.02 }, Translation(0, 0, 0.15), -0.02, 0.02));
-    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("ellipsoid", p); };
     types.push_back(t);
   }
   {
@@ -362,14 +361,12 @@ std::vector<MirrorType> QuadricMirrorTypes()
     MirrorType t = MakeType("sphere", "x^2 + y^2 + z^2 = radius^2, cut by z_range",
       { { "radius", 1, "the sphere's radius" } },
       WithTail({ 0.05 }, Translation(0, 0, 0.2), -0.05, 0.0));
-    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("sphere", p); };
     types.push_back(t);
   }
   {
     MirrorType t = MakeType("cone", "x^2 + y^2 = tan(half_angle)^2 z^2: apex at the origin",
       { { "half_angle", 1, "degrees, in (0, 90)" } },
       WithTail({ 30.0 }, Translation(0, 0, 0.1), 0.0, 0.04));
-    t.validate = [](const std::vector<double>& p) { return ValidateQuadric("cone", p); };
     types.push_back(t);
   }
   return types;
@@ -465,14 +462,14 @@ QuadricSurface::QuadricSurface(const MirrorDescription& description, const Quadr
     axis += d;
   }
   axis = axis.norm() > 0.0 ? Vec3(axis.normalized()) : hits.front();
-  double spread = 0.0; // the largest angle from the axis, as a cosine
-  double cosMin = 1.0;
+  double cosMin = 1.0; // the cosine of the largest angle from the axis
   for (const Vec3& d : hits)
   {
     cosMin = std::min(cosMin, d.dot(axis));
   }
-  spread = std::acos(std::max(-1.0, std::min(1.0, cosMin))) + 2.0 * kPi / cols;
-  spread = std::min(spread, 0.49 * kPi);
+  // That angle and one scan step more, below a right angle (the grid is on a tangent plane).
+  const double spread =
+    std::min(std::acos(std::max(-1.0, std::min(1.0, cosMin))) + 2.0 * kPi / cols, 0.49 * kPi);
   const Vec3 e1 = axis.unitOrthogonal();
   const Vec3 e2 = axis.cross(e1);
   const int n = 64;

@@ -46,7 +46,10 @@ struct QuadricGeometry
 
 /// The geometry of a description of one of the quadric types ("quadric", "hyperboloid",
 /// "paraboloid", "ellipsoid", "cone", the cut "sphere"); false for another type or a wrong count.
-bool QuadricFromDescription(const MirrorDescription& description, QuadricGeometry& geometry);
+/// Shape numbers out of range (a negative axis, ...) leave omega zero and, when shapeError is
+/// given, a sentence there.
+bool QuadricFromDescription(const MirrorDescription& description, QuadricGeometry& geometry,
+  std::string* shapeError = nullptr);
 
 /// The catalogue entries of the quadric types (MirrorTypes.cxx).
 std::vector<MirrorType> QuadricMirrorTypes();
@@ -68,8 +71,6 @@ public:
   double Value(const Vec3& r) const { return r.dot(this->A * r) + 2.0 * this->B.dot(r) + this->C; }
   Vec3 Gradient(const Vec3& r) const { return 2.0 * (this->A * r + this->B); }
   double MirrorZ(const Vec3& r) const { return this->W.dot(r) + this->W0; }
-  /// The length that scales the tolerances (the distance to the mirror's viewpoint).
-  double Scale() const { return this->Length; }
 
   /// Axial placements (a surface of revolution about the mirror frame's z, the camera on that
   /// axis): every reflection of P lies in the plane of the axis and P, where the camera ray's

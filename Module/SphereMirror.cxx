@@ -482,8 +482,9 @@ bool SphereMirror::From(const MirrorDescription& description, SphereMirror& sphe
 
 namespace
 {
-std::string ValidateSphere(const std::vector<double>& p)
+std::string ValidateSphere(const MirrorDescription& description)
 {
+  const std::vector<double>& p = description.parameters;
   const SphereMirror s{ Vec3(p[0], p[1], p[2]), p[3] };
   std::ostringstream err;
   if (!(s.radius > 0.0))

@@ -203,7 +203,7 @@ int vtkCatadioptricCompositor::RequestData(
   }
   this->LastSize[0] = width;
   this->LastSize[1] = height;
-  unsigned char* out = this->AllocateOutput(output, width, height);
+  unsigned char* out = vtkCatadioptricImageSupport::AllocateRGBA(output, width, height);
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
 
   // Background, written band by band with the triangles: the frame (grey and RGB widened to

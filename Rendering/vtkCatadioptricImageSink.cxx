@@ -11,7 +11,6 @@
 #include "vtkInformationVector.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkUnsignedCharArray.h"
 
 vtkCatadioptricImageSink::vtkCatadioptricImageSink()
 {
@@ -136,9 +135,4 @@ bool vtkCatadioptricImageSink::ResolveImageSize(bool haveFrame, int& width, int&
     return false;
   }
   return true;
-}
-
-unsigned char* vtkCatadioptricImageSink::AllocateOutput(vtkImageData* output, int width, int height)
-{
-  return vtkCatadioptricImageSupport::AllocateRGBA(output, width, height);
 }

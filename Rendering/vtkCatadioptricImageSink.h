@@ -105,12 +105,10 @@ protected:
   /// after reporting why it cannot be used (not a 2D unsigned char image of 1 to 4 components, or
   /// not width x height when width > 0). ResolveImageSize: without a frame, ImageSize (when set)
   /// becomes the size; false after reporting an ImageSize that contradicts a known size (width >
-  /// 0), no size at all, or one over the limit. AllocateOutput: `output` as a
-  /// width x height RGBA image (its scalars reused from the last run when no one else holds them),
-  /// its bytes.
+  /// 0), no size at all, or one over the limit. The output image itself is made by
+  /// vtkCatadioptricImageSupport::AllocateRGBA, as the environment source's is.
   int CheckFrame(vtkImageData* frame, int width, int height);
   bool ResolveImageSize(bool haveFrame, int& width, int& height);
-  unsigned char* AllocateOutput(vtkImageData* output, int width, int height);
   ///@}
 
   double Color[3] = { 0.8, 0.8, 0.8 };

@@ -380,7 +380,7 @@ int vtkCatadioptricRayTracer::RequestData(
   {
     return 0;
   }
-  unsigned char* out = this->AllocateOutput(output, width, height);
+  unsigned char* out = vtkCatadioptricImageSupport::AllocateRGBA(output, width, height);
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
   if (frame)
   {

@@ -184,20 +184,6 @@ inline void RefBarycentric(const GridPt t[3], int px, int py, long double l[3])
 }
 
 inline RasterVertex Vtx(
-  const GridPt& p, float r = 1, float g = 1, float b = 1, float a = 1, float z = 0)
-{
-  RasterVertex v;
-  v.x = static_cast<double>(p.x) / 256.0; // exact
-  v.y = static_cast<double>(p.y) / 256.0;
-  v.r = r;
-  v.g = g;
-  v.b = b;
-  v.a = a;
-  v.depth = z;
-  return v;
-}
-
-inline RasterVertex Vtx(
   double x, double y, float r = 1, float g = 1, float b = 1, float a = 1, float z = 0)
 {
   RasterVertex v;
@@ -209,6 +195,38 @@ inline RasterVertex Vtx(
   v.a = a;
   v.depth = z;
   return v;
+}
+
+inline RasterVertex Vtx(
+  const GridPt& p, float r = 1, float g = 1, float b = 1, float a = 1, float z = 0)
+{
+  // 1/256 steps: exact in a double.
+  return Vtx(static_cast<double>(p.x) / 256.0, static_cast<double>(p.y) / 256.0, r, g, b, a, z);
+}
+
+/// The same half-transparent triangle drawn twice into `once` with the depth test (which stops
+/// the second: alpha 128) and into `twice` without it (alpha 192): checks every pixel of both and
+/// returns how many the triangle covers.
+inline int ExpectBlendedOnceAndTwice(const Image& once, const Image& twice)
+{
+  int drawn = 0;
+  for (int y = 0; y < once.h; ++y)
+  {
+    for (int x = 0; x < once.w; ++x)
+    {
+      if (once.at(x, y)[3] != 0)
+      {
+        ++drawn;
+        EXPECT_EQ(once.at(x, y)[3], 128);
+        EXPECT_EQ(twice.at(x, y)[3], 192);
+      }
+      else
+      {
+        EXPECT_EQ(twice.at(x, y)[3], 0);
+      }
+    }
+  }
+  return drawn;
 }
 
 // Expected byte for an exact value v in [0, 255]: returns true if `actual` is acceptable, i.e.

@@ -334,24 +334,7 @@ TEST(Rasterizer, DepthIsInterpolatedTestedStrictlyAndWritten)
     rasterizeTriangle(once.view(), t[0], t[1], t[2], &dv);
     rasterizeTriangle(twice.view(), t[0], t[1], t[2]);
   }
-  int drawn = 0;
-  for (int y = 0; y < 12; ++y)
-  {
-    for (int x = 0; x < 12; ++x)
-    {
-      if (once.at(x, y)[3] != 0)
-      {
-        ++drawn;
-        EXPECT_EQ(once.at(x, y)[3], 128);
-        EXPECT_EQ(twice.at(x, y)[3], 192);
-      }
-      else
-      {
-        EXPECT_EQ(twice.at(x, y)[3], 0);
-      }
-    }
-  }
-  EXPECT_GT(drawn, 15);
+  EXPECT_GT(ExpectBlendedOnceAndTwice(once, twice), 15);
 }
 
 TEST(Rasterizer, InterpenetratingTrianglesCrossAtTheExpectedColumn)
