@@ -371,7 +371,7 @@ int vtkCatadioptricProjection::RequestData(
     worker.Width = camera->GetImageWidth();
     worker.Height = camera->GetImageHeight();
     worker.CullBackFaces = this->BackFaceCulling;
-    const catar::PoseFrames pose(projector.GetModel().worldToCamera);
+    const catar::PoseFrames& pose = projector.GetPose();
     worker.CameraToWorldRotation = pose.rotationT;
     worker.CameraCentre = pose.centre;
     input->GetPolys()->Visit(CellDispatch{}, worker);

@@ -11,6 +11,7 @@ namespace catar
 {
 Projector::Projector(const CameraModel& model)
   : Model(model)
+  , Pose(model.worldToCamera)
 {
   this->Error = model.Validate();
   this->Valid = this->Error.empty();
@@ -28,8 +29,6 @@ Projector::Projector(const CameraModel& model)
   {
     this->BatchSize = std::max(1, std::min(this->MirrorModel->BatchSize(), Mirror::kMaxBatchSize));
   }
-  this->R = model.worldToCamera.topLeftCorner<3, 3>();
-  this->T = model.worldToCamera.topRightCorner<3, 1>();
 }
 
 ProjectedPoint Projector::ProjectCamera(const Vec3& p, SolverType solver) const
@@ -43,7 +42,7 @@ ProjectedPoint Projector::ProjectWorldNear(const Vec3& pWorld, const Vec3& mirro
   {
     return this->ProjectWorld(pWorld, SolverType::Iterative);
   }
-  return this->ProjectCameraFrom(this->R * pWorld + this->T, SolverType::Iterative, &mirrorGuess);
+  return this->ProjectCameraFrom(this->Pose.ToCamera(pWorld), SolverType::Iterative, &mirrorGuess);
 }
 
 void Projector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess,
@@ -64,7 +63,7 @@ void Projector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const Vec3* 
       const Vec3& g = mirrorGuess[first + l];
       if (this->Valid && w.allFinite() && g.allFinite())
       {
-        p[count] = this->R * w + this->T;
+        p[count] = this->Pose.ToCamera(w);
         guess[count] = g;
         lane[count++] = l;
       }
@@ -140,24 +139,35 @@ ProjectedPoint Projector::ProjectWorld(const Vec3& pWorld, SolverType solver) co
   {
     return ProjectedPoint();
   }
-  return this->ProjectCamera(this->R * pWorld + this->T, solver);
+  return this->ProjectCamera(this->Pose.ToCamera(pWorld), solver);
 }
 
-BackProjectedRay Projector::BackProjectCamera(const Vec2& pixel) const
+bool Projector::CameraRay(const Vec2& pixel, Vec3& d, BackProjectedRay& out) const
 {
-  BackProjectedRay out;
+  out = BackProjectedRay();
   if (!this->Valid || !pixel.allFinite())
   {
     out.status = ProjectionStatus::InvalidInput;
-    return out;
+    return false;
   }
   Vec2 xy;
   if (!this->Model.PixelToNormalized(pixel, xy))
   {
     out.status = ProjectionStatus::NoReflection;
+    return false;
+  }
+  d = Vec3(xy.x(), xy.y(), 1.0).normalized();
+  return true;
+}
+
+BackProjectedRay Projector::BackProjectCamera(const Vec2& pixel) const
+{
+  BackProjectedRay out;
+  Vec3 d;
+  if (!this->CameraRay(pixel, d, out))
+  {
     return out;
   }
-  const Vec3 d = Vec3(xy.x(), xy.y(), 1.0).normalized();
   Vec3 r, n;
   if (!this->MirrorModel->Intersect(d, r, n))
   {
@@ -192,21 +202,8 @@ void Projector::BackProjectCamera(std::size_t n, const Vec2* pixels, BackProject
     int index[M];
     for (int i = 0; i < count; ++i)
     {
-      const Vec2& pixel = pixels[first + i];
-      BackProjectedRay& o = out[first + i];
-      Vec2 xy;
-      if (!this->Valid || !pixel.allFinite())
+      if (this->CameraRay(pixels[first + i], d[todo], out[first + i]))
       {
-        o = BackProjectedRay();
-      }
-      else if (!this->Model.PixelToNormalized(pixel, xy))
-      {
-        o = BackProjectedRay();
-        o.status = ProjectionStatus::NoReflection;
-      }
-      else
-      {
-        d[todo] = Vec3(xy.x(), xy.y(), 1.0).normalized();
         index[todo++] = i;
       }
     }

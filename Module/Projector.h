@@ -27,6 +27,8 @@ public:
   bool IsValid() const { return this->Valid; }
   const std::string& GetError() const { return this->Error; }
   const CameraModel& GetModel() const { return this->Model; }
+  /// The model's pose taken apart once (world <-> camera for many points).
+  const PoseFrames& GetPose() const { return this->Pose; }
   /// The camera's mirror (nullptr when the model is not valid).
   const Mirror* GetMirror() const { return this->MirrorModel.get(); }
   /// How many points ProjectWorldNear solves side by side: batches of this size (or a multiple)
@@ -65,6 +67,9 @@ private:
   ProjectedPoint ProjectCameraFrom(const Vec3& p, SolverType solver, const Vec3* mirrorGuess) const;
   // The camera-side end of a projection: r is p's reflection point (both camera frame).
   ProjectedPoint Finish(const Vec3& p, const Vec3& r, bool pixel = true) const;
+  // The unit camera ray of a pixel; false with out's status set (InvalidInput, NoReflection)
+  // when there is none.
+  bool CameraRay(const Vec2& pixel, Vec3& d, BackProjectedRay& out) const;
   // The reflected ray of the camera ray d (unit) that meets the mirror at r, normal nrm.
   BackProjectedRay Reflected(const Vec2& pixel, const Vec3& d, const Vec3& r, const Vec3& n) const;
 
@@ -73,8 +78,7 @@ private:
   std::string Error;
   std::shared_ptr<const Mirror> MirrorModel;
   int BatchSize = 1;
-  Mat3 R; // world-to-camera rotation
-  Vec3 T; // world-to-camera translation
+  PoseFrames Pose; // the model's pose, taken apart once
 };
 /// Projects points begin..end-1 of a sequence in which points that follow each other are mostly
 /// neighbours (a mesh's points): store(i, point, result) for each, in order, with
