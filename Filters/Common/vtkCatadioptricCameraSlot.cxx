@@ -55,7 +55,6 @@ bool vtkCatadioptricCameraSlot::SetMirrorType(const char* type)
     return false;
   }
   this->MirrorType = name;
-  this->MirrorChanged = true;
   return true;
 }
 
@@ -69,7 +68,6 @@ bool vtkCatadioptricCameraSlot::SetNumberOfMirrorParameters(int n)
     return false;
   }
   this->MirrorParameters.resize(static_cast<std::size_t>(n), 0.0);
-  this->MirrorChanged = true;
   return true;
 }
 
@@ -81,7 +79,6 @@ bool vtkCatadioptricCameraSlot::SetMirrorParameter(int i, double value)
     return false;
   }
   this->MirrorParameters[i] = value;
-  this->MirrorChanged = true;
   return true;
 }
 
@@ -99,11 +96,12 @@ vtkCatadioptricCamera* vtkCatadioptricCameraSlot::Resolve(std::string& error)
     return base;
   }
   // The base camera with the mirror replaced, remade only when either changed.
-  if (this->MirrorChanged || !this->MirrorCamera || this->MirrorCameraFrom != base ||
-    this->MirrorCameraBase != base->GetMTime())
+  const catar::MirrorDescription mirror(this->MirrorType, this->MirrorParameters);
+  if (!this->MirrorCamera || this->MirrorCameraFrom != base ||
+    this->MirrorCameraBase != base->GetMTime() || this->MirrorCamera->GetModel().mirror != mirror)
   {
     catar::CameraModel model = base->GetModel();
-    model.mirror = catar::MirrorDescription(this->MirrorType, this->MirrorParameters);
+    model.mirror = mirror;
     const std::string problem = catar::ValidateMirror(model.mirror);
     if (!problem.empty())
     {
@@ -117,7 +115,6 @@ vtkCatadioptricCamera* vtkCatadioptricCameraSlot::Resolve(std::string& error)
     this->MirrorCamera->SetModel(model);
     this->MirrorCameraFrom = base;
     this->MirrorCameraBase = base->GetMTime();
-    this->MirrorChanged = false;
   }
   return this->MirrorCamera;
 }

@@ -62,7 +62,6 @@ private:
   vtkSmartPointer<vtkCatadioptricCamera> MirrorCamera; // the camera with the mirror replaced
   vtkMTimeType MirrorCameraBase = 0;                   // the base camera's time it was made from
   vtkCatadioptricCamera* MirrorCameraFrom = nullptr;
-  bool MirrorChanged = true;
 
   vtkSmartPointer<vtkCatadioptricCamera> Camera;
   std::string FileName;
