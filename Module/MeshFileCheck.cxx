@@ -120,6 +120,17 @@ bool CheckPlyFile(const std::string& path, std::string& error)
     {
       return fail("a header line is longer than 4000 bytes or holds a NUL byte");
     }
+    // The reader splits header lines at spaces and tabs only: another control character (a
+    // vertical tab, ...) joins two words for it, which it does not survive.
+    const auto control = std::find_if(line.begin(), line.end(),
+      [](unsigned char c) { return (c < 0x20 && c != '\t') || c == 0x7f; });
+    if (control != line.end())
+    {
+      std::ostringstream s;
+      s << "header line " << lines + 2 << " holds the control character 0x" << std::hex
+        << static_cast<int>(static_cast<unsigned char>(*control));
+      return fail(s.str());
+    }
     std::istringstream words(line);
     std::string key;
     words >> key;
@@ -423,9 +434,15 @@ bool CheckLegacyVtkFile(const std::string& path, std::string& error)
   std::string word;
   const char* pending = nullptr; // the section whose counts come next
   int counts = 0;
+  // A word the reader takes for a number (it reads counts with operator>>, so a sign counts: a
+  // negative count turns into a huge one). ParseCount then refuses what is not a count.
+  const auto numeric = [](const std::string& w) {
+    const std::size_t first = !w.empty() && (w[0] == '-' || w[0] == '+') ? 1 : 0;
+    return first < w.size() && std::isdigit(static_cast<unsigned char>(w[first]));
+  };
   while (in >> word)
   {
-    if (pending && counts < 2 && std::isdigit(static_cast<unsigned char>(word[0])))
+    if (pending && counts < 2 && numeric(word))
     {
       // A point takes at least 3 bytes (three numbers), any other value at least one.
       std::uint64_t n = 0;
@@ -435,7 +452,9 @@ bool CheckLegacyVtkFile(const std::string& path, std::string& error)
         std::transform(keyword.begin(), keyword.end(), keyword.begin(),
           [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
         error = path + ": not a valid VTK file: " + keyword + " announces " + word.substr(0, 24) +
-          " values, more than the file's " + std::to_string(size) + " bytes can hold";
+          (std::isdigit(static_cast<unsigned char>(word[0]))
+              ? " values, more than the file's " + std::to_string(size) + " bytes can hold"
+              : " values, which is not a count");
         return false;
       }
       ++counts;
@@ -445,22 +464,32 @@ bool CheckLegacyVtkFile(const std::string& path, std::string& error)
     const std::string key = Lower(word);
     // Attribute headers whose component counts the reader allocates by: SCALARS name type [n]
     // (1 to 4), COLOR_SCALARS name n (1 to 4), TEXTURE_COORDINATES name n type (1 to 3).
-    const int skip = key == "scalars"                            ? 2
-      : (key == "color_scalars" || key == "texture_coordinates") ? 1
-                                                                 : -1;
+    // Matched as the reader matches them: by the keyword's length ("SCALARS-1" is SCALARS).
+    const auto is = [&key](const char* keyword) {
+      return key.compare(0, std::strlen(keyword), keyword) == 0;
+    };
+    const int skip = is("scalars")                         ? 2
+      : (is("color_scalars") || is("texture_coordinates")) ? 1
+                                                           : -1;
     if (skip >= 0)
     {
-      std::string line;
-      std::getline(in, line);
-      std::istringstream rest(line);
+      // The reader reads every part as a word, wherever the lines break: the name (and SCALARS'
+      // type), then the count (for SCALARS the next word unless it is LOOKUP_TABLE), with atoi:
+      // a sign and the digits that lead the word count.
       std::string w;
-      for (int k = 0; k < skip && rest >> w; ++k)
+      for (int k = 0; k < skip && in >> w; ++k)
       {
       }
-      if (rest >> w && std::isdigit(static_cast<unsigned char>(w[0])))
+      if (in >> w && numeric(w))
       {
+        const std::size_t sign = w[0] == '-' || w[0] == '+' ? 1 : 0;
+        const std::size_t digits = std::find_if(w.begin() + sign, w.end(),
+                                     [](unsigned char c) { return !std::isdigit(c); }) -
+          w.begin();
+        const std::size_t plus = w[0] == '+' ? 1 : 0; // atoi's "+3" is 3; "-3" is refused below
+        w = w.substr(plus, digits - plus);
         std::uint64_t n = 0;
-        const std::uint64_t most = key == "texture_coordinates" ? 3 : 4;
+        const std::uint64_t most = is("texture_coordinates") ? 3 : 4;
         if (!ParseCount(w, most, n) || n < 1)
         {
           error = path + ": not a valid VTK file: " + word + " has " + w.substr(0, 24) +
