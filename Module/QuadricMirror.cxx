@@ -1102,9 +1102,16 @@ ProjectionStatus QuadricSurface::Reflect(
     }
     return false;
   };
-  if (guess && guess->allFinite() && attempt(*guess))
+  if (guess && guess->allFinite())
   {
-    return ProjectionStatus::Valid;
+    // Started next to the answer: the plain Newton of ReflectNear first (so that a point gets the
+    // same answer alone as in a batch), then the safeguarded one.
+    unsigned char settled = 0;
+    this->ReflectNear(1, &P, guess, &mirrorPoint, &settled);
+    if (settled || attempt(*guess))
+    {
+      return ProjectionStatus::Valid;
+    }
   }
   if (this->Axial && solver == SolverType::Quartic && !guess)
   {

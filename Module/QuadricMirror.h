@@ -18,11 +18,13 @@
 // Forward projection: the reflection point r is where the optical path |r| + |P - r| is
 // stationary on the surface (Fermat), found by Newton on the Lagrange system
 //   r / |r| + (r - P) / |r - P| = lambda grad F(r),   F(r) = 0,
-// started from a neighbour's answer, or from a table of the mirror's back-projected rays (the
-// ray whose direction seen from the mirror's effective viewpoint is nearest P's), or, should that
-// fail, from each of the table's rays nearest P in turn. A found point counts when it lies on the
-// mirror part, reflects (both rays on the side of the normal that faces them), is the first
-// point the camera ray meets, and the reflected segment to P meets no mirror on the way.
+// started from a neighbour's answer (plain Newton, several points side by side: ReflectNear; then
+// the safeguarded one, whose steps lower the residual), or from a table of the mirror's
+// back-projected rays (the ray whose direction seen from the mirror's effective viewpoint is
+// nearest P's), or, should that fail, from each of the table's rays nearest P in turn. A found
+// point counts when it lies on the mirror part, reflects (both rays on the side of the normal that
+// faces them), is the first point the camera ray meets, and the reflected segment to P meets no
+// mirror on the way.
 #ifndef catarQuadricMirror_h
 #define catarQuadricMirror_h
 
@@ -65,6 +67,12 @@ public:
   ProjectionStatus Reflect(const Vec3& point, SolverType solver, Vec3& mirrorPoint,
     const Vec3* guess = nullptr) const override;
   bool Intersect(const Vec3& direction, Vec3& point, Vec3& normal) const override;
+  /// Points solved side by side in ReflectNear (QuadricReflectNear.cxx).
+  static constexpr int kLanes = 8;
+  static_assert(kLanes <= kMaxBatchSize, "a batch fits the projector's");
+  int BatchSize() const override { return kLanes; }
+  void ReflectNear(int n, const Vec3* points, const Vec3* guesses, Vec3* mirrorPoints,
+    unsigned char* settled) const override;
   Vec3 Viewpoint() const override { return this->EffectiveViewpoint; }
 
   /// F(r) in the camera frame (negative inside), its gradient, and z in the mirror frame.

@@ -364,6 +364,104 @@ TEST(QuadricMirror, ExtremesGetAStatusAndNeverNaN)
   }
 }
 
+// ProjectWorldNear(n, ...) solves points side by side (QuadricSurface::ReflectNear); each result
+// must be bit for bit the one-point call's, whatever mix of points (inside the mirror, on it,
+// behind the camera, far, NaN) and guesses (close, anywhere on the mirror, off it, NaN) a batch
+// holds, and for any batch length; the answers settled side by side obey the law of reflection.
+TEST(QuadricMirror, ManyPointsAtOnceGiveWhatOneAtATimeGives)
+{
+  std::mt19937_64 rng(7);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::uniform_real_distribution<double> pixel(0.0, 799.0);
+  std::uniform_real_distribution<double> distance(0.01, 3.0);
+  std::uniform_int_distribution<int> kind(0, 9);
+  for (const Case& c : Cases())
+  {
+    SCOPED_TRACE(c.name);
+    const Projector proj(Camera(c.mirror));
+    ASSERT_TRUE(proj.IsValid()) << proj.GetError();
+    ASSERT_GT(proj.GetBatchSize(), 1);
+    std::vector<Vec3> points, guesses, mirrorPoints;
+    while (points.size() < 3000)
+    {
+      const BackProjectedRay ray = proj.BackProjectCamera(Vec2(pixel(rng), pixel(rng)));
+      if (!HasProjection(ray.status))
+      {
+        continue;
+      }
+      mirrorPoints.push_back(ray.mirrorPoint);
+      Vec3 p = ray.mirrorPoint + distance(rng) * ray.direction;
+      // A guess: the reflection point of a point 1 mm away (the usual case).
+      const Vec3 offset(1e-3 * (pixel(rng) / 400.0 - 1.0), 1e-3, -1e-3);
+      Vec3 guess = proj.ProjectCamera(p + offset).mirrorPoint;
+      switch (kind(rng))
+      {
+        case 0:
+          p = ray.mirrorPoint - 0.01 * ray.direction; // behind the mirror: inside it, or hidden
+          break;
+        case 1:
+          p = ray.mirrorPoint; // on it
+          break;
+        case 2:
+          p = -p; // behind the camera
+          break;
+        case 3:
+          guess = mirrorPoints[mirrorPoints.size() / 2]; // another point of the mirror
+          break;
+        case 4:
+          guess = Vec3(nan, 0, 0);
+          break;
+        case 5:
+          guess = 3.0 * guess; // off the mirror
+          break;
+        case 6:
+          p = points.size() % 7 == 0 ? Vec3(nan, nan, nan) : 1e6 * p; // NaN, or far away
+          break;
+        default:
+          break;
+      }
+      points.push_back(p);
+      guesses.push_back(guess);
+    }
+    int valid = 0;
+    for (const std::size_t length :
+      { std::size_t(1), std::size_t(3), std::size_t(8), std::size_t(11), points.size() })
+    {
+      std::vector<ProjectedPoint> out(points.size());
+      for (std::size_t first = 0; first < points.size(); first += length)
+      {
+        const std::size_t n = std::min(length, points.size() - first);
+        proj.ProjectWorldNear(n, points.data() + first, guesses.data() + first, out.data() + first);
+      }
+      for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        const ProjectedPoint one = proj.ProjectWorldNear(points[i], guesses[i]);
+        ASSERT_EQ(out[i].status, one.status) << i;
+        ASSERT_EQ(out[i].mirrorPoint, one.mirrorPoint) << i;
+        ASSERT_EQ(out[i].pixel, one.pixel) << i;
+        ASSERT_EQ(out[i].pathLength, one.pathLength) << i;
+        if (!HasProjection(one.status) || one.mirrorPoint == points[i])
+        {
+          continue; // no reflection, or a point on the mirror (its own)
+        }
+        ++valid;
+        // The law of reflection at the answer (the normal from the quadric's gradient).
+        Mat4 omega = Mat4::Zero(), toMirror = Mat4::Identity();
+        MirrorFrame(c.mirror, omega, toMirror);
+        const Vec3& r = one.mirrorPoint;
+        const Eigen::Vector4d X = toMirror * Eigen::Vector4d(r.x(), r.y(), r.z(), 1.0);
+        const Vec3 n =
+          (toMirror.topLeftCorner<3, 3>().transpose() * (omega * X).head<3>()).normalized();
+        const Vec3 u1 = -r.normalized();
+        const Vec3 u2 = (points[i] - r).normalized();
+        ASSERT_LE(std::abs(std::abs(n.dot(u1)) - std::abs(n.dot(u2))), 1e-10) << i;
+        ASSERT_LE(std::abs(n.dot(u1.cross(u2))), 1e-10) << i;
+      }
+    }
+    EXPECT_GT(valid, 5 * 1000) << "of " << 5 * points.size();
+  }
+}
+
 // Points whose reflection is on the rim of z_range (the last pixels of each row that see the
 // mirror): a reflection on the mirror, or a status, never a point off the mirror or NaN.
 TEST(QuadricMirror, TheRimOfZRange)
