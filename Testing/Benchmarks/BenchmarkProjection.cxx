@@ -61,11 +61,15 @@ void BM_ForwardProjection(benchmark::State& state)
 BENCHMARK(BM_ForwardProjection)->Arg(0)->Arg(1);
 
 // The same through a hyperbolic mirror tilted 4 degrees (the general quadric solver): from its own
-// start (0) and from the reflection point of a point 1 mm away (1).
+// start (0), from the reflection point of a point 1 mm away (1), and from there through the
+// many-points call (2: points solved side by side).
 void BM_ForwardProjectionQuadric(benchmark::State& state)
 {
-  const bool near = state.range(0) == 1;
-  state.SetLabel(near ? "tilted hyperboloid, start 1 mm away" : "tilted hyperboloid");
+  const bool near = state.range(0) >= 1;
+  const bool batch = state.range(0) == 2;
+  state.SetLabel(batch ? "tilted hyperboloid, start 1 mm away, batch"
+      : near           ? "tilted hyperboloid, start 1 mm away"
+                       : "tilted hyperboloid");
   const CameraModel model = catar_test::TiltedHyperboloidCameraModel();
   const Projector proj(model);
   const std::vector<Vec3> pts = ScenePoints(model, 4096);
@@ -74,8 +78,15 @@ void BM_ForwardProjectionQuadric(benchmark::State& state)
   {
     guesses.push_back(proj.ProjectWorld(p + Vec3(1e-3, -1e-3, 1e-3)).mirrorPoint);
   }
+  std::vector<ProjectedPoint> out(pts.size());
   for (auto _ : state)
   {
+    if (batch)
+    {
+      proj.ProjectWorldNear(pts.size(), pts.data(), guesses.data(), out.data());
+      benchmark::DoNotOptimize(out.data());
+      continue;
+    }
     for (std::size_t i = 0; i < pts.size(); ++i)
     {
       benchmark::DoNotOptimize(
@@ -84,7 +95,7 @@ void BM_ForwardProjectionQuadric(benchmark::State& state)
   }
   SetPerItem(state, pts.size());
 }
-BENCHMARK(BM_ForwardProjectionQuadric)->Arg(0)->Arg(1);
+BENCHMARK(BM_ForwardProjectionQuadric)->Arg(0)->Arg(1)->Arg(2);
 
 // An axial hyperboloid (the same, untilted: the camera on its axis) with the quartic solver: the
 // planar reduction, every root bracketed (0); and the iterative solver from its own start (1).
