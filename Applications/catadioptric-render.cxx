@@ -1,35 +1,199 @@
-// catadioptric-render: renders a scene file (or the built-in demo) to a PNG and prints the time
-// of each stage.
+// catadioptric-render: renders a scene file (or the built-in demo) to a PNG, or a sequence to
+// numbered PNGs or a video, and prints the time of each stage.
 //
-//   catadioptric-render [SCENE] [-o OUT.png] [--repeat N] [--target-area A | --pixel-tolerance P]
-//                       [--print-demo-scene]
+//   catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--repeat N]
+//                       [--target-area A | --pixel-tolerance P] [--print-demo-scene]
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkSMPTools.h"
 
+#include "VideoIO.h"
+
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <unistd.h>
+#include <vector>
 
 namespace
 {
 void Usage(FILE* out)
 {
   std::fprintf(out,
-    "usage: catadioptric-render [SCENE] [-o OUT.png] [--repeat N]\n"
+    "usage: catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--repeat N]\n"
     "                           [--target-area A | --pixel-tolerance P] [--print-demo-scene]\n"
     "\n"
-    "Renders SCENE (YAML or JSON, see README \"Scene files\") to OUT.png (default\n"
+    "Renders SCENE (YAML or JSON, see README \"Scene files\") to OUT (default\n"
     "catadioptric-render.png) and prints the time of each stage. Without SCENE it renders the\n"
-    "built-in demo scene. --repeat N renders N frames and reports the per-frame stages of the\n"
-    "last one. --target-area A remeshes every object to triangles of about A square metres;\n"
+    "built-in demo scene.\n"
+    "\n"
+    "Sequences (a scene with a trajectory, a video background, keyframes or 'sequence'): OUT as\n"
+    "a pattern (out/frame_%%05d.png) writes every frame as a numbered image, OUT ending in .mp4\n"
+    "or .avi writes a video; OUT a plain image name writes the first frame of the range.\n"
+    "--frames A:B renders frames A to B-1 (0-based; A: and :B leave an end open), --fps F sets\n"
+    "the video's frame rate (default: the sequence's). A progress line on standard error and a\n"
+    "per-stage summary follow.\n"
+    "\n"
+    "--repeat N renders the frame N times and reports the per-frame stages of the last one.\n"
+    "--target-area A remeshes every object to triangles of about A square metres;\n"
     "--pixel-tolerance P remeshes every object so that no visible edge bends more than P pixels\n"
     "in the image (both override the scene's 'remesh' settings). --print-demo-scene writes the\n"
     "demo scene's YAML to standard output.\n");
+}
+
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::time_point a, Clock::time_point b)
+{
+  return std::chrono::duration<double>(b - a).count();
+}
+
+// "A:B", "A:", ":B" or "A" (frames A to B-1; A alone is that frame); false when malformed.
+bool ParseRange(const std::string& text, long long& first, long long& end)
+{
+  const std::size_t colon = text.find(':');
+  auto number = [](const std::string& s, long long& v) {
+    if (s.empty())
+    {
+      return true;
+    }
+    char* e = nullptr;
+    v = std::strtoll(s.c_str(), &e, 10);
+    return e && *e == '\0' && v >= 0;
+  };
+  if (colon == std::string::npos)
+  {
+    if (text.empty() || !number(text, first))
+    {
+      return false;
+    }
+    end = first + 1;
+    return true;
+  }
+  return number(text.substr(0, colon), first) && number(text.substr(colon + 1), end);
+}
+
+// The rendered frame (VTK's rows, bottom first) as RGBA, the top row first.
+catar::Frame TopFirst(vtkImageData* image)
+{
+  catar::Frame f;
+  int dims[3];
+  image->GetDimensions(dims);
+  f.width = dims[0];
+  f.height = dims[1];
+  f.rgba.resize(static_cast<std::size_t>(f.width) * f.height * 4);
+  const auto* in = static_cast<const unsigned char*>(image->GetScalarPointer());
+  const std::size_t row = static_cast<std::size_t>(f.width) * 4;
+  for (int y = 0; y < f.height; ++y)
+  {
+    std::copy(in + row * (f.height - 1 - y), in + row * (f.height - y), f.rgba.data() + row * y);
+  }
+  return f;
+}
+
+// "1:05" (minutes and seconds) or "1:02:05".
+std::string HoursMinutes(double seconds)
+{
+  const long long s = static_cast<long long>(std::max(0.0, seconds) + 0.5);
+  char b[32];
+  if (s >= 3600)
+  {
+    std::snprintf(b, sizeof b, "%lld:%02lld:%02lld", s / 3600, s / 60 % 60, s % 60);
+  }
+  else
+  {
+    std::snprintf(b, sizeof b, "%lld:%02lld", s / 60, s % 60);
+  }
+  return b;
+}
+
+// The progress line: a bar on a terminal (rewritten in place), a line every tenth otherwise.
+void Progress(long long done, long long total, double elapsed, bool terminal)
+{
+  const double rate = elapsed > 0.0 ? done / elapsed : 0.0;
+  const double left = rate > 0.0 ? (total - done) / rate : 0.0;
+  if (terminal)
+  {
+    const int width = 30;
+    const int filled = static_cast<int>(width * done / std::max(1LL, total));
+    std::fprintf(stderr, "\r[%s%s] %lld/%lld frames, %.1f fps, %s left ",
+      std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done, total, rate,
+      HoursMinutes(left).c_str());
+    if (done == total)
+    {
+      std::fputc('\n', stderr);
+    }
+  }
+  else if (done == total || (done * 10 / total) != ((done - 1) * 10 / total))
+  {
+    std::fprintf(stderr, "%lld/%lld frames, %.1f fps, %s left\n", done, total, rate,
+      HoursMinutes(left).c_str());
+  }
+  std::fflush(stderr);
+}
+
+// Renders frames [first, end) of the sequence to a pattern or a video; prints a summary.
+int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& outName,
+  long long first, long long end, double fps)
+{
+  vtkCatadioptricCamera* cam = renderer->GetCamera();
+  catar::FrameWriter writer;
+  std::string error;
+  if (!writer.Open(outName, cam->GetImageWidth(), cam->GetImageHeight(), fps, error))
+  {
+    std::fprintf(stderr, "catadioptric-render: %s\n", error.c_str());
+    return 1;
+  }
+  const int stages = renderer->GetNumberOfStages();
+  const int perFrame = renderer->GetFirstPerFrameStage();
+  std::vector<double> sum(stages, 0.0), worst(stages, 0.0);
+  double encode = 0.0, encodeWorst = 0.0;
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  const auto start = Clock::now();
+  for (long long k = first; k < end; ++k)
+  {
+    if (!renderer->RenderFrame(static_cast<int>(k)))
+    {
+      std::fprintf(stderr, "\ncatadioptric-render: frame %lld: %s\n", k, renderer->GetLastError());
+      return 1;
+    }
+    for (int s = perFrame - 1; s < stages; ++s) // the background (decoding) and the frame's
+    {
+      sum[s] += renderer->GetStageTime(s);
+      worst[s] = std::max(worst[s], renderer->GetStageTime(s));
+    }
+    const auto e0 = Clock::now();
+    if (!writer.Write(k, TopFirst(renderer->GetOutput()), error))
+    {
+      std::fprintf(stderr, "\ncatadioptric-render: %s\n", error.c_str());
+      return 1;
+    }
+    const double e = Seconds(e0, Clock::now());
+    encode += e;
+    encodeWorst = std::max(encodeWorst, e);
+    Progress(k - first + 1, end - first, Seconds(start, Clock::now()), terminal);
+  }
+  writer.Close();
+  const double total = Seconds(start, Clock::now());
+  const long long n = end - first;
+  std::printf("frames: %lld (%lld to %lld) in %.2f s: %.1f frames a second with decoding and "
+              "encoding\n",
+    n, first, end - 1, total, n / total);
+  std::printf("  %-11s %9s %9s\n", "stage", "mean ms", "max ms");
+  for (int s = perFrame - 1; s < stages; ++s)
+  {
+    std::printf(
+      "  %-11s %9.2f %9.2f\n", renderer->GetStageName(s), 1e3 * sum[s] / n, 1e3 * worst[s]);
+  }
+  std::printf("  %-11s %9.2f %9.2f\n", "encode", 1e3 * encode / n, 1e3 * encodeWorst);
+  std::printf("wrote %s\n", outName.c_str());
+  return 0;
 }
 } // namespace
 
@@ -40,6 +204,8 @@ int main(int argc, char* argv[])
   int repeat = 1;
   double targetArea = 0.0;
   double pixelTolerance = 0.0;
+  long long first = 0, end = -1; // --frames (end -1: the sequence's last)
+  double fps = 0.0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -63,6 +229,26 @@ int main(int argc, char* argv[])
       if (repeat < 1)
       {
         std::fprintf(stderr, "catadioptric-render: --repeat needs a positive number\n");
+        return 2;
+      }
+    }
+    else if (arg == "--frames" && i + 1 < argc)
+    {
+      if (!ParseRange(argv[++i], first, end) || (end >= 0 && end <= first))
+      {
+        std::fprintf(stderr,
+          "catadioptric-render: --frames needs A:B with 0 <= A < B (frames A to B-1), A:, :B "
+          "or A\n");
+        return 2;
+      }
+    }
+    else if (arg == "--fps" && i + 1 < argc)
+    {
+      char* e = nullptr;
+      fps = std::strtod(argv[++i], &e);
+      if (!e || *e != '\0' || !(fps > 0.0 && fps <= 1000.0))
+      {
+        std::fprintf(stderr, "catadioptric-render: --fps needs a number in (0, 1000]\n");
         return 2;
       }
     }
@@ -109,9 +295,47 @@ int main(int argc, char* argv[])
   renderer->SetSceneFileName(scene.empty() ? nullptr : scene.c_str());
   renderer->SetRemeshTargetArea(targetArea);
   renderer->SetRemeshPixelTolerance(pixelTolerance);
+  if (!renderer->LoadScene())
+  {
+    std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
+    return 1;
+  }
+  const long long frames = renderer->GetNumberOfFrames();
+  if (*renderer->GetSequenceNote())
+  {
+    std::fprintf(stderr, "catadioptric-render: note: %s\n", renderer->GetSequenceNote());
+  }
+  end = end < 0 ? frames : end;
+  if (first >= frames || end > frames)
+  {
+    std::fprintf(stderr,
+      "catadioptric-render: --frames %lld:%lld is outside the sequence (frames 0 to %lld)\n", first,
+      end, frames - 1);
+    return 2;
+  }
+  std::string patternError;
+  const bool sequence =
+    catar::IsFramePattern(outName, &patternError) || catar::FrameWriter::IsVideo(outName);
+  if (!patternError.empty())
+  {
+    std::fprintf(stderr, "catadioptric-render: -o %s\n", patternError.c_str());
+    return 2;
+  }
+  if (sequence)
+  {
+    return RenderSequence(
+      renderer, outName, first, end, fps > 0.0 ? fps : renderer->GetFrameRate());
+  }
+  if (frames > 1 && end - first > 1)
+  {
+    std::fprintf(stderr,
+      "catadioptric-render: note: the scene has %lld frames; writing frame %lld (give -o "
+      "out/frame_%%05d.png or out.mp4 for all)\n",
+      frames, first);
+  }
   for (int f = 0; f < repeat; ++f)
   {
-    if (!renderer->Render())
+    if (!renderer->RenderFrame(static_cast<int>(first)))
     {
       std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
       return 1;

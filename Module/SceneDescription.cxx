@@ -4,8 +4,11 @@
 #include "ConfigReader.h"
 #include "DemoSceneText.h" // generated: kDemoSceneText
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace catar
@@ -128,6 +131,56 @@ SceneRemesh ReadRemesh(const fs::Node& node, const SceneRemesh& fallback)
   return r;
 }
 
+// The rotation of an object's `rotate` (degrees about x, then y, then z, as the object's
+// transform applies them): Rz Ry Rx.
+Eigen::Quaterniond EulerRotation(const Vec3& degrees)
+{
+  const double k = 3.14159265358979323846 / 180.0;
+  return Eigen::Quaterniond(Eigen::AngleAxisd(k * degrees.z(), Vec3::UnitZ()) *
+    Eigen::AngleAxisd(k * degrees.y(), Vec3::UnitY()) *
+    Eigen::AngleAxisd(k * degrees.x(), Vec3::UnitX()));
+}
+
+// `keyframes`: a sequence of maps with a `time` and the given keys; calls read(map, time) for
+// each, in order, after checking that the times rise.
+template<typename Read>
+void ReadKeyframes(const fs::Node& node, std::initializer_list<const char*> keys, const Read& read)
+{
+  if (node.empty() || node.isNone())
+  {
+    return;
+  }
+  if (!node.isSeq())
+  {
+    throw fs::ParseError("'keyframes' must be a sequence of maps");
+  }
+  double previous = -std::numeric_limits<double>::infinity();
+  int i = 0;
+  for (const fs::Node& k : node.items())
+  {
+    const std::string where = "keyframes[" + std::to_string(i++) + "]";
+    if (!k.isMap())
+    {
+      throw fs::ParseError(where + " must be a map");
+    }
+    try
+    {
+      fs::CheckKeys(k, keys);
+      const double time = fs::Number(k, "time");
+      if (!std::isfinite(time) || !(time > previous))
+      {
+        throw fs::ParseError("'time' must be finite and after the previous keyframe's");
+      }
+      previous = time;
+      read(k, time);
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(where + ": " + e.what());
+    }
+  }
+}
+
 SceneObject ReadObject(
   const fs::Node& node, const std::string& baseDir, int index, const SceneRemesh& defaultRemesh)
 {
@@ -142,7 +195,7 @@ SceneObject ReadObject(
     fs::CheckKeys(node,
       { "name", "type", "file", "size", "radius", "tube_radius", "height", "resolution",
         "translate", "rotate", "scale", "color", "opacity", "face_colors", "pattern",
-        "pattern_size", "texture", "remesh", "material" });
+        "pattern_size", "texture", "remesh", "material", "keyframes" });
     SceneObject o;
     o.type = fs::String(node, "type", "");
     o.file = fs::String(node, "file", "");
@@ -227,6 +280,18 @@ SceneObject ReadObject(
       o.texture = Resolve(baseDir, o.texture);
     }
     o.remesh = ReadRemesh(node["remesh"], defaultRemesh);
+    ReadKeyframes(
+      node["keyframes"], { "time", "translate", "rotate" }, [&o](const fs::Node& k, double time) {
+        Keyframe f;
+        f.time = time;
+        f.position = Vec3Or(k, "translate", o.translate);
+        f.rotation = EulerRotation(Vec3Or(k, "rotate", o.rotate));
+        if (!f.position.allFinite() || !f.rotation.coeffs().allFinite())
+        {
+          throw fs::ParseError("'translate' and 'rotate' must be finite");
+        }
+        o.keyframes.frames.push_back(f);
+      });
     const fs::Node material = node["material"];
     if (!material.empty() && !material.isNone())
     {
@@ -280,7 +345,7 @@ SceneLight ReadLight(const fs::Node& node, int index)
   {
     fs::CheckKeys(node,
       { "type", "position", "focal_point", "cone_angle", "exponent", "color", "ambient",
-        "intensity", "attenuation" });
+        "intensity", "attenuation", "keyframes" });
     SceneLight l;
     l.type = fs::String(node, "type", l.type);
     if (l.type != "spot" && l.type != "point" && l.type != "directional")
@@ -315,6 +380,22 @@ SceneLight ReadLight(const fs::Node& node, int index)
     {
       throw fs::ParseError("'attenuation' must be three non-negative numbers, not all zero");
     }
+    ReadKeyframes(node["keyframes"], { "time", "position", "focal_point" },
+      [&l](const fs::Node& k, double time) {
+        SceneLightKeyframe f;
+        f.time = time;
+        f.position = Vec3Or(k, "position", l.position);
+        f.focalPoint = Vec3Or(k, "focal_point", l.focalPoint);
+        if (!f.position.allFinite() || !f.focalPoint.allFinite())
+        {
+          throw fs::ParseError("'position' and 'focal_point' must be finite");
+        }
+        if (l.type != "point" && (f.position - f.focalPoint).norm() == 0.0)
+        {
+          throw fs::ParseError("'position' and 'focal_point' must differ");
+        }
+        l.keyframes.push_back(f);
+      });
     return l;
   }
   catch (const fs::ParseError& e)
@@ -374,7 +455,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   }
   fs::CheckKeys(root,
     { "camera", "output", "solver", "cull_back_faces", "visibility", "background", "lighting",
-      "remesh", "objects" });
+      "remesh", "objects", "trajectory", "sequence" });
   const fs::Node cam = root["camera"];
   if (cam.isString())
   {
@@ -459,7 +540,9 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   {
     try
     {
-      fs::CheckKeys(bg, { "type", "color", "image", "samples", "file", "rotation", "backdrop" });
+      fs::CheckKeys(bg,
+        { "type", "color", "image", "samples", "file", "rotation", "backdrop", "match", "fps",
+          "start_time" });
     }
     catch (const fs::ParseError& e)
     {
@@ -467,9 +550,11 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     }
     scene.background.type = fs::String(bg, "type", "environment");
     if (scene.background.type != "environment" && scene.background.type != "panorama" &&
-      scene.background.type != "color" && scene.background.type != "image")
+      scene.background.type != "color" && scene.background.type != "image" &&
+      scene.background.type != "video")
     {
-      throw fs::ParseError("background: 'type' must be environment, panorama, color or image");
+      throw fs::ParseError(
+        "background: 'type' must be environment, panorama, color, image or video");
     }
     scene.background.color = ColorOr(bg, "color", scene.background.color);
     scene.background.image = Resolve(baseDir, fs::String(bg, "image", ""));
@@ -490,6 +575,71 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
       throw fs::ParseError("background: 'rotation' must be a finite number (degrees)");
     }
     scene.background.backdrop = ColorOr(bg, "backdrop", scene.background.backdrop);
+    if (scene.background.type == "video")
+    {
+      scene.background.video = scene.background.panorama;
+      scene.background.panorama.clear();
+      if (scene.background.video.empty())
+      {
+        throw fs::ParseError("background: type 'video' needs 'file' (a video or a frame pattern)");
+      }
+    }
+    scene.background.match = fs::String(bg, "match", scene.background.match);
+    if (scene.background.match != "index" && scene.background.match != "time")
+    {
+      throw fs::ParseError("background: 'match' must be 'index' or 'time'");
+    }
+    scene.background.fps = fs::Number(bg, "fps", 0.0);
+    if (!(scene.background.fps >= 0.0 && scene.background.fps <= 1000.0))
+    {
+      throw fs::ParseError("background: 'fps' must be in (0, 1000] frames a second");
+    }
+    scene.background.startTime = fs::Number(bg, "start_time", 0.0);
+    if (!std::isfinite(scene.background.startTime))
+    {
+      throw fs::ParseError("background: 'start_time' must be a finite number (seconds)");
+    }
+  }
+  const fs::Node trajectory = root["trajectory"];
+  if (!trajectory.empty() && !trajectory.isNone())
+  {
+    if (!trajectory.isString())
+    {
+      throw fs::ParseError("'trajectory' must name a file");
+    }
+    scene.trajectoryFile = Resolve(baseDir, trajectory.text());
+    std::string error;
+    if (!LoadTrajectory(scene.trajectoryFile, scene.trajectory, error))
+    {
+      throw fs::ParseError("trajectory: " + error);
+    }
+  }
+  const fs::Node sequence = root["sequence"];
+  if (!sequence.empty() && !sequence.isNone())
+  {
+    if (!sequence.isMap())
+    {
+      throw fs::ParseError("'sequence' must be a map");
+    }
+    try
+    {
+      fs::CheckKeys(sequence, { "frames", "fps" });
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(std::string("sequence: ") + e.what());
+    }
+    const double frames = fs::Number(sequence, "frames", 1);
+    if (!(frames >= 1 && frames <= 10000000 && frames == std::floor(frames)))
+    {
+      throw fs::ParseError("sequence: 'frames' must be an integer in [1, 10000000]");
+    }
+    scene.sequence.frames = static_cast<int>(frames);
+    scene.sequence.fps = fs::Number(sequence, "fps", scene.sequence.fps);
+    if (!(scene.sequence.fps > 0.0 && scene.sequence.fps <= 1000.0))
+    {
+      throw fs::ParseError("sequence: 'fps' must be in (0, 1000] frames a second");
+    }
   }
   scene.lighting = ReadLighting(root["lighting"]);
   scene.remesh = ReadRemesh(root["remesh"], SceneRemesh());
@@ -524,6 +674,60 @@ bool ReadRoot(const fs::Node& root, const std::string& what, const std::string& 
   }
 }
 } // namespace
+
+void SceneLight::At(double t, Vec3& p, Vec3& focal) const
+{
+  p = this->position;
+  focal = this->focalPoint;
+  if (this->keyframes.empty())
+  {
+    return;
+  }
+  const auto& k = this->keyframes;
+  if (!(t > k.front().time))
+  {
+    p = k.front().position;
+    focal = k.front().focalPoint;
+    return;
+  }
+  if (t >= k.back().time)
+  {
+    p = k.back().position;
+    focal = k.back().focalPoint;
+    return;
+  }
+  std::size_t i = 1;
+  while (k[i].time < t)
+  {
+    ++i;
+  }
+  const double s = (t - k[i - 1].time) / (k[i].time - k[i - 1].time);
+  p = (1.0 - s) * k[i - 1].position + s * k[i].position;
+  focal = (1.0 - s) * k[i - 1].focalPoint + s * k[i].focalPoint;
+}
+
+bool SceneDescription::IsSequence() const
+{
+  if (!this->trajectory.Empty() || this->background.type == "video" || this->sequence.frames > 1)
+  {
+    return true;
+  }
+  for (const SceneObject& o : this->objects)
+  {
+    if (!o.keyframes.Empty())
+    {
+      return true;
+    }
+  }
+  for (const SceneLight& l : this->lighting.lights)
+  {
+    if (!l.keyframes.empty())
+    {
+      return true;
+    }
+  }
+  return false;
+}
 
 double ProceduralTriangles(const std::string& type, int resolution)
 {

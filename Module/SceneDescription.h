@@ -9,6 +9,7 @@
 
 #include "CameraModel.h"
 #include "Projector.h"
+#include "Trajectory.h"
 
 #include <string>
 #include <vector>
@@ -69,6 +70,19 @@ struct SceneObject
   Vec3 specularColor = Vec3(1, 1, 1);
   /// Mesh preparation; the scene's `remesh` unless the object has its own.
   SceneRemesh remesh;
+  /// Key `keyframes`: the object's placement over time, a sequence of `{time, translate,
+  /// rotate}` (a keyframe without translate or rotate keeps the object's own); positions are
+  /// interpolated linearly, rotations by slerp, clamped before the first and after the last. The
+  /// mesh is built (and remeshed) at the object's own translate and rotate, then moved.
+  Keyframes keyframes;
+};
+
+/// A keyframe of a light: its position and focal point at a time (both interpolated linearly).
+struct SceneLightKeyframe
+{
+  double time = 0.0;
+  Vec3 position = Vec3::Zero();
+  Vec3 focalPoint = Vec3::Zero();
 };
 
 /// A light of the scene (world coordinates; colours in [0,1], multiplied by intensity).
@@ -83,6 +97,11 @@ struct SceneLight
   Vec3 ambient = Vec3(0, 0, 0);
   double intensity = 1.0;
   Vec3 attenuation = Vec3(1, 0, 0);
+  /// Key `keyframes`: `{time, position, focal_point}` (a keyframe without one of them keeps the
+  /// light's own), times strictly increasing; clamped before the first and after the last.
+  std::vector<SceneLightKeyframe> keyframes;
+  /// Position and focal point at time t.
+  void At(double t, Vec3& position, Vec3& focal) const;
 };
 
 /// How objects are lit. Without a `lighting` section scenes are unlit (shading "none").
@@ -98,7 +117,8 @@ struct SceneLighting
 struct SceneBackground
 {
   /// "environment" (procedural room), "panorama" (an equirectangular panorama reflected by the
-  /// mirror), "color" or "image"
+  /// mirror), "color", "image" or "video" (a video file or a numbered image sequence, key `file`:
+  /// the camera's own frames, one per frame of the sequence)
   std::string type = "environment";
   Vec3 color = Vec3(0, 0, 0);
   std::string image; ///< image file for type "image"
@@ -108,6 +128,22 @@ struct SceneBackground
   std::string panorama;
   double rotation = 0.0;               ///< type "panorama": degrees about world +z
   Vec3 backdrop = Vec3(0.5, 0.5, 0.5); ///< type "panorama": colour around the mirror
+  /// Type "video" (key `file`): a video file or a printf pattern (`frames/%05d.png`), resolved
+  /// against the scene file's folder.
+  std::string video;
+  /// Type "video", key `match`: how frame k pairs with the camera's poses: "index" (pose k of
+  /// the trajectory) or "time" (the pose at the frame's time, start_time + k / fps).
+  std::string match = "index";
+  double fps = 0.0;       ///< key `fps`: frames a second; 0 = the video's own
+  double startTime = 0.0; ///< key `start_time`: the time of frame 0 (match "time"), seconds
+};
+
+/// Key `sequence` (for scenes without a trajectory or a video background): `frames` frames at
+/// `fps` frames a second, frame k at time k / fps.
+struct SceneSequence
+{
+  int frames = 1;
+  double fps = 30.0;
 };
 
 struct SceneDescription
@@ -127,6 +163,16 @@ struct SceneDescription
   SceneLighting lighting;
   SceneRemesh remesh; ///< default of every object
   std::vector<SceneObject> objects;
+  /// Key `trajectory` (a file, resolved against the scene file's folder; Trajectory.h gives the
+  /// formats): the camera's poses over time, replacing the calibration's world_to_camera. Frame
+  /// k of the sequence is pose k (or, with a video background matched by time, the pose at the
+  /// frame's time).
+  std::string trajectoryFile;
+  Trajectory trajectory;
+  SceneSequence sequence;
+
+  /// Whether anything moves or changes from frame to frame (a trajectory, keyframes, a video).
+  bool IsSequence() const;
 };
 
 /// Reads a scene file. Returns false and says why in `error` on failure.

@@ -2,6 +2,8 @@
 
 #include "FileOutput.h"
 #include "SceneDescription.h"
+#include "SceneFrames.h"
+#include "VideoIO.h"
 
 #include "vtkAppendPolyData.h"
 #include "vtkCatadioptricArrayNames.h"
@@ -22,6 +24,7 @@
 #include "vtkIntArray.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPNGWriter.h"
@@ -30,9 +33,13 @@
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkSmartPointer.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
 #include "vtkTrivialProducer.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtksys/SystemTools.hxx"
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <chrono>
@@ -88,7 +95,25 @@ std::string Layout(vtkPolyData* mesh)
 // named per mesh). Materials may differ: they travel with the joined mesh.
 bool Joinable(const catar::SceneObject& a, const catar::SceneObject& b)
 {
-  return a.texture.empty() && b.texture.empty();
+  return a.texture.empty() && b.texture.empty() && a.keyframes.Empty() && b.keyframes.Empty();
+}
+
+// An object's placement: translation times rotation (its `rotate`, Rz Ry Rx, as BuildObject).
+catar::Mat4 Placement(const catar::Vec3& position, const Eigen::Quaterniond& rotation)
+{
+  catar::Mat4 m = catar::Mat4::Identity();
+  m.topLeftCorner<3, 3>() = rotation.toRotationMatrix();
+  m.topRightCorner<3, 1>() = position;
+  return m;
+}
+
+catar::Mat4 Placement(const catar::SceneObject& o)
+{
+  const double k = 3.14159265358979323846 / 180.0;
+  const Eigen::Quaterniond r(Eigen::AngleAxisd(k * o.rotate.z(), catar::Vec3::UnitZ()) *
+    Eigen::AngleAxisd(k * o.rotate.y(), catar::Vec3::UnitY()) *
+    Eigen::AngleAxisd(k * o.rotate.x(), catar::Vec3::UnitX()));
+  return Placement(o.translate, r);
 }
 
 bool SameMaterial(const catar::SceneObject& a, const catar::SceneObject& b)
@@ -127,7 +152,103 @@ struct vtkCatadioptricSceneRenderer::Internals
   vtkNew<vtkCatadioptricCompositor> Compositor;
   // Every object's mesh, for the shadows: one ray-query structure shared by the lighting filters.
   vtkNew<vtkCatadioptricOccluders> Occluders;
+
+  // The sequence: its plan, the frame set up last, the background video and its current frame,
+  // the keyframed objects (their transform from the built mesh, placed at the object's own
+  // translate and rotate, to the frame's placement).
+  catar::SceneFrames Frames;
+  int CurrentFrame = -1;
+  catar::FrameReader Video;
+  vtkNew<vtkImageData> VideoImage;
+  struct Moving
+  {
+    std::size_t object;
+    vtkSmartPointer<vtkTransform> transform;
+    catar::Mat4 baseInverse;
+    catar::Mat4 current;
+  };
+  std::vector<Moving> MovingObjects;
+
+  bool ApplyFrame(int k);
 };
+
+bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
+{
+  const double time = this->Frames.Time(k);
+  // The camera: touched only when the pose changes (its projections then run again).
+  const catar::Mat4 pose = this->Frames.Pose(k);
+  double current[16];
+  this->Camera->GetWorldToCameraElements(current);
+  bool same = true;
+  for (int i = 0; i < 16; ++i)
+  {
+    same = same && current[i] == pose(i / 4, i % 4);
+  }
+  if (!same)
+  {
+    double rowMajor[16];
+    for (int i = 0; i < 16; ++i)
+    {
+      rowMajor[i] = pose(i / 4, i % 4);
+    }
+    this->Camera->SetWorldToCameraElements(rowMajor);
+  }
+  for (Moving& m : this->MovingObjects)
+  {
+    catar::Vec3 position;
+    Eigen::Quaterniond rotation;
+    this->Scene.objects[m.object].keyframes.At(time, position, rotation);
+    const catar::Mat4 motion = Placement(position, rotation) * m.baseInverse;
+    if (motion != m.current)
+    {
+      double rowMajor[16];
+      for (int i = 0; i < 16; ++i)
+      {
+        rowMajor[i] = motion(i / 4, i % 4);
+      }
+      m.transform->SetMatrix(rowMajor);
+      m.current = motion;
+    }
+  }
+  // Lights (vtkLight's setters mark it modified only when the value changes).
+  vtkCollectionSimpleIterator it;
+  this->Lights->InitTraversal(it);
+  for (const catar::SceneLight& l : this->Scene.lighting.lights)
+  {
+    vtkLight* light = this->Lights->GetNextLight(it);
+    if (light && !l.keyframes.empty())
+    {
+      catar::Vec3 position, focal;
+      l.At(time, position, focal);
+      light->SetPosition(position.data());
+      light->SetFocalPoint(focal.data());
+    }
+  }
+  // The background's frame, in VTK's row order.
+  const long long videoFrame = this->Frames.VideoFrame(k);
+  if (videoFrame >= 0)
+  {
+    catar::Frame frame;
+    if (!this->Video.Read(videoFrame, frame, this->Error))
+    {
+      this->Error = "background: " + this->Error;
+      return false;
+    }
+    vtkImageData* image = this->VideoImage;
+    image->SetDimensions(frame.width, frame.height, 1);
+    image->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+    auto* out = static_cast<unsigned char*>(image->GetScalarPointer());
+    const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
+    for (int y = 0; y < frame.height; ++y)
+    {
+      std::copy(frame.rgba.data() + row * (frame.height - 1 - y),
+        frame.rgba.data() + row * (frame.height - y), out + row * y);
+    }
+    image->Modified();
+  }
+  this->CurrentFrame = k;
+  return true;
+}
 
 vtkCatadioptricSceneRenderer::vtkCatadioptricSceneRenderer()
   : Internal(new Internals)
@@ -169,6 +290,39 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     model = model.Resized(scene.width, scene.height);
   }
   in.Camera->SetModel(model);
+  // The sequence's frames; the camera at frame 0's pose before the meshes are prepared (the
+  // pixel-tolerance remeshing looks through it).
+  in.Scene = scene;
+  in.CurrentFrame = -1;
+  in.MovingObjects.clear();
+  long long videoFrames = 0;
+  double videoFps = 0.0;
+  if (scene.background.type == "video")
+  {
+    if (!in.Video.Open(scene.background.video, in.Error))
+    {
+      in.Error = "background: " + in.Error;
+      vtkErrorMacro(<< in.Error);
+      return false;
+    }
+    videoFrames = in.Video.GetNumberOfFrames();
+    videoFps = in.Video.GetFrameRate();
+  }
+  if (!in.Frames.Plan(in.Scene, videoFrames, videoFps, in.Error))
+  {
+    vtkErrorMacro(<< in.Error);
+    return false;
+  }
+  if (!scene.trajectory.Empty())
+  {
+    const catar::Mat4 pose = in.Frames.Pose(0);
+    double rowMajor[16];
+    for (int i = 0; i < 16; ++i)
+    {
+      rowMajor[i] = pose(i / 4, i % 4);
+    }
+    in.Camera->SetWorldToCameraElements(rowMajor);
+  }
   auto t1 = Clock::now();
   in.Times[0] = Seconds(t0, t1);
 
@@ -326,17 +480,51 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     groupFirst.push_back(i);
     i = end;
   }
+  // Keyframed objects (each its own group): moved by a transform in front of the projection.
+  std::vector<vtkSmartPointer<vtkTransformPolyDataFilter>> movers(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g)
+  {
+    const catar::SceneObject& o = scene.objects[groupFirst[g]];
+    if (o.keyframes.Empty())
+    {
+      continue;
+    }
+    Internals::Moving m;
+    m.object = groupFirst[g];
+    m.transform = vtkSmartPointer<vtkTransform>::New();
+    m.baseInverse = Placement(o).inverse();
+    m.current = catar::Mat4::Identity();
+    movers[g] = vtkSmartPointer<vtkTransformPolyDataFilter>::New();
+    movers[g]->SetTransform(m.transform);
+    movers[g]->SetInputData(groups[g]);
+    in.MovingObjects.push_back(m);
+  }
   const bool shadows = lit && scene.lighting.shadows;
   in.Occluders->RemoveAllMeshes();
   for (size_t g = 0; g < groups.size() && shadows; ++g)
   {
-    in.Occluders->AddMesh(groups[g]);
+    if (movers[g])
+    {
+      movers[g]->Update(); // its output is the mesh that casts the shadows, moved every frame
+      in.Occluders->AddMesh(movers[g]->GetOutput());
+    }
+    else
+    {
+      in.Occluders->AddMesh(groups[g]);
+    }
   }
   for (size_t g = 0; g < groups.size(); ++g)
   {
     const catar::SceneObject& o = scene.objects[groupFirst[g]];
     auto proj = vtkSmartPointer<vtkCatadioptricProjection>::New();
-    proj->SetInputData(groups[g]);
+    if (movers[g])
+    {
+      proj->SetInputConnection(movers[g]->GetOutputPort());
+    }
+    else
+    {
+      proj->SetInputData(groups[g]);
+    }
     proj->SetCamera(in.Camera);
     proj->SetBackFaceCulling(scene.cullBackFaces);
     proj->SetSolver(scene.solver == catar::SolverType::Iterative
@@ -411,6 +599,12 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     producer->SetOutput(image);
     in.Background = producer;
   }
+  else if (bg.type == "video")
+  {
+    auto producer = vtkSmartPointer<vtkTrivialProducer>::New();
+    producer->SetOutput(in.VideoImage);
+    in.Background = producer;
+  }
   else
   {
     in.Compositor->SetBackgroundColor(bg.color.x(), bg.color.y(), bg.color.z(), 1.0);
@@ -420,10 +614,58 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   {
     in.Compositor->SetFrameConnection(in.Background->GetOutputPort());
   }
-  in.Scene = scene;
+  if (!in.ApplyFrame(0))
+  {
+    vtkErrorMacro(<< in.Error);
+    return false;
+  }
   in.LoadedName = name;
   in.Loaded = true;
   return true;
+}
+
+int vtkCatadioptricSceneRenderer::GetNumberOfFrames()
+{
+  return this->Internal->Loaded ? static_cast<int>(this->Internal->Frames.count) : 0;
+}
+
+double vtkCatadioptricSceneRenderer::GetFrameTime(int frame)
+{
+  return this->Internal->Loaded ? this->Internal->Frames.Time(frame) : 0.0;
+}
+
+double vtkCatadioptricSceneRenderer::GetFrameRate()
+{
+  return this->Internal->Frames.fps;
+}
+
+const char* vtkCatadioptricSceneRenderer::GetSequenceNote()
+{
+  return this->Internal->Frames.note.c_str();
+}
+
+bool vtkCatadioptricSceneRenderer::RenderFrame(int frame)
+{
+  Internals& in = *this->Internal;
+  const std::string name = this->SceneFileName ? this->SceneFileName : "";
+  if ((!in.Loaded || in.LoadedName != name) && !this->LoadScene())
+  {
+    return false;
+  }
+  if (frame < 0 || frame >= in.Frames.count)
+  {
+    in.Error = "frame " + std::to_string(frame) + " is not in the sequence (it has " +
+      std::to_string(in.Frames.count) + " frames, 0 to " + std::to_string(in.Frames.count - 1) +
+      ")";
+    vtkErrorMacro(<< in.Error);
+    return false;
+  }
+  if (frame != in.CurrentFrame && !in.ApplyFrame(frame))
+  {
+    vtkErrorMacro(<< in.Error);
+    return false;
+  }
+  return this->Render();
 }
 
 int vtkCatadioptricSceneRenderer::GetNumberOfPipelines()

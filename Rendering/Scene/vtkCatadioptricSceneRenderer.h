@@ -78,6 +78,21 @@ public:
   /// Renders a frame. Returns false on failure (see GetLastError()).
   bool Render();
 
+  ///@{
+  /// Sequences (README "Sequences"): a scene with a `trajectory`, a `video` background,
+  /// keyframed objects or lights, or a `sequence` key has several frames; a still scene has one.
+  /// LoadScene() plans them and sets up frame 0. RenderFrame(k) moves the camera, the objects
+  /// and the lights to frame k, takes the background's frame k, and renders; only what moved is
+  /// recomputed (a still camera keeps the projection of still objects; moving lights redo the
+  /// lighting only). GetFrameRate() is the rate a video of the sequence plays at;
+  /// GetSequenceNote() a sentence when video and trajectory differ in length ("" otherwise).
+  int GetNumberOfFrames();
+  double GetFrameTime(int frame);
+  double GetFrameRate();
+  const char* GetSequenceNote();
+  bool RenderFrame(int frame);
+  ///@}
+
   /// The last rendered frame (RGBA, VTK row order), or nullptr.
   vtkImageData* GetOutput();
 

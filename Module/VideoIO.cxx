@@ -1,0 +1,465 @@
+#include "VideoIO.h"
+
+#include "CameraModel.h" // kMaxImagePixels
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+
+namespace catar
+{
+namespace
+{
+constexpr long long kMaxFrames = 10000000;
+
+bool FileExists(const std::string& path)
+{
+  return std::ifstream(path).good();
+}
+
+std::string Lower(std::string s)
+{
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string Extension(const std::string& name)
+{
+  const std::size_t dot = name.find_last_of('.');
+  const std::size_t slash = name.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    return "";
+  }
+  return Lower(name.substr(dot));
+}
+
+std::string DirName(const std::string& path)
+{
+  const std::size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+}
+
+// BGR(A) or grey, 8 or 16 bits, to RGBA 8 bits.
+bool ToRGBA(const cv::Mat& in, Frame& frame, std::string& error)
+{
+  if (in.empty() || in.dims != 2)
+  {
+    error = "an empty frame";
+    return false;
+  }
+  if (static_cast<long long>(in.cols) * in.rows > kMaxImagePixels)
+  {
+    error = "a frame of " + std::to_string(in.cols) + "x" + std::to_string(in.rows) +
+      " pixels, over the limit of " + std::to_string(kMaxImagePixels);
+    return false;
+  }
+  cv::Mat eight = in;
+  if (in.depth() == CV_16U)
+  {
+    in.convertTo(eight, CV_8U, 1.0 / 257.0);
+  }
+  else if (in.depth() != CV_8U)
+  {
+    error = "frames must have 8 or 16 bits a channel";
+    return false;
+  }
+  cv::Mat rgba;
+  switch (eight.channels())
+  {
+    case 1:
+      cv::cvtColor(eight, rgba, cv::COLOR_GRAY2RGBA);
+      break;
+    case 3:
+      cv::cvtColor(eight, rgba, cv::COLOR_BGR2RGBA);
+      break;
+    case 4:
+      cv::cvtColor(eight, rgba, cv::COLOR_BGRA2RGBA);
+      break;
+    default:
+      error = "frames must have 1, 3 or 4 channels";
+      return false;
+  }
+  frame.width = rgba.cols;
+  frame.height = rgba.rows;
+  frame.rgba.assign(rgba.data, rgba.data + rgba.total() * 4);
+  return true;
+}
+} // namespace
+
+bool IsFramePattern(const std::string& name, std::string* error)
+{
+  int conversions = 0;
+  for (std::size_t i = 0; i < name.size(); ++i)
+  {
+    if (name[i] != '%')
+    {
+      continue;
+    }
+    if (i + 1 < name.size() && name[i + 1] == '%')
+    {
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < name.size() && std::isdigit(static_cast<unsigned char>(name[j])) && j - i <= 2)
+    {
+      ++j;
+    }
+    if (j >= name.size() || name[j] != 'd')
+    {
+      if (error)
+      {
+        *error = "'" + name + "': a '%' must start %d, %5d or %05d (at most two digits), or be %%";
+      }
+      return false;
+    }
+    ++conversions;
+    i = j;
+  }
+  if (conversions > 1 && error)
+  {
+    *error = "'" + name + "' has " + std::to_string(conversions) + " frame numbers; give one";
+  }
+  return conversions == 1;
+}
+
+std::string FrameFileName(const std::string& pattern, long long index)
+{
+  if (!IsFramePattern(pattern))
+  {
+    return pattern;
+  }
+  // Checked above: one integer conversion of at most two digits' width, and %%.
+  std::string out;
+  for (std::size_t i = 0; i < pattern.size(); ++i)
+  {
+    if (pattern[i] != '%')
+    {
+      out += pattern[i];
+      continue;
+    }
+    if (pattern[i + 1] == '%')
+    {
+      out += '%';
+      ++i;
+      continue;
+    }
+    const std::size_t d = pattern.find('d', i);
+    const std::string spec = pattern.substr(i, d - i) + "lld";
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, spec.c_str(), index);
+    out += buffer;
+    i = d;
+  }
+  return out;
+}
+
+struct FrameReader::Internals
+{
+  std::string name;
+  bool pattern = false;
+  long long first = 0; // the pattern's first index
+  long long count = 0;
+  double fps = 0.0;
+  int width = 0, height = 0;
+  cv::VideoCapture capture;
+  long long next = 0; // the video frame the capture reads next
+};
+
+FrameReader::FrameReader()
+  : Internal(new Internals)
+{
+}
+
+FrameReader::~FrameReader() = default;
+
+bool FrameReader::Open(const std::string& name, std::string& error)
+{
+  Internals& in = *this->Internal;
+  in = Internals();
+  in.name = name;
+  std::string patternError;
+  in.pattern = IsFramePattern(name, &patternError);
+  if (!patternError.empty())
+  {
+    error = patternError;
+    return false;
+  }
+  if (in.pattern)
+  {
+    in.first = FileExists(FrameFileName(name, 0)) ? 0 : 1;
+    while (in.count < kMaxFrames && FileExists(FrameFileName(name, in.first + in.count)))
+    {
+      ++in.count;
+    }
+    if (in.count == 0)
+    {
+      error = "no frames: neither " + FrameFileName(name, 0) + " nor " + FrameFileName(name, 1) +
+        " exists";
+      return false;
+    }
+    return true;
+  }
+  if (!FileExists(name))
+  {
+    error = "cannot open '" + name + "'";
+    return false;
+  }
+  try
+  {
+    in.capture.open(name, cv::CAP_FFMPEG);
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "cannot read '" + name + "' as a video: " + e.msg;
+    return false;
+  }
+  if (!in.capture.isOpened())
+  {
+    error = "cannot read '" + name + "' as a video (not a video file, or no decoder for it)";
+    return false;
+  }
+  in.count = static_cast<long long>(in.capture.get(cv::CAP_PROP_FRAME_COUNT));
+  in.fps = in.capture.get(cv::CAP_PROP_FPS);
+  if (!(in.count > 0) || in.count > kMaxFrames)
+  {
+    error = "'" + name + "' says it has " + std::to_string(in.count) + " frames";
+    return false;
+  }
+  if (!(in.fps > 0.0 && in.fps < 1e6))
+  {
+    in.fps = 0.0;
+  }
+  return true;
+}
+
+long long FrameReader::GetNumberOfFrames() const
+{
+  return this->Internal->count;
+}
+
+double FrameReader::GetFrameRate() const
+{
+  return this->Internal->fps;
+}
+
+bool FrameReader::Read(long long k, Frame& frame, std::string& error)
+{
+  Internals& in = *this->Internal;
+  if (k < 0 || k >= in.count)
+  {
+    error = "frame " + std::to_string(k) + " of '" + in.name + "' does not exist (it has " +
+      std::to_string(in.count) + ")";
+    return false;
+  }
+  cv::Mat image;
+  try
+  {
+    if (in.pattern)
+    {
+      const std::string file = FrameFileName(in.name, in.first + k);
+      image = cv::imread(file, cv::IMREAD_UNCHANGED);
+      if (image.empty())
+      {
+        error = "cannot read '" + file + "' as an image";
+        return false;
+      }
+    }
+    else
+    {
+      if (k < in.next)
+      {
+        in.capture.open(in.name, cv::CAP_FFMPEG);
+        in.next = 0;
+      }
+      for (; in.next < k; ++in.next)
+      {
+        if (!in.capture.grab())
+        {
+          break;
+        }
+      }
+      if (in.next != k || !in.capture.read(image))
+      {
+        error = "cannot decode frame " + std::to_string(k) + " of '" + in.name + "'";
+        return false;
+      }
+      ++in.next;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "cannot read frame " + std::to_string(k) + " of '" + in.name + "': " + e.msg;
+    return false;
+  }
+  if (!ToRGBA(image, frame, error))
+  {
+    error = "frame " + std::to_string(k) + " of '" + in.name + "': " + error;
+    return false;
+  }
+  if (in.width == 0)
+  {
+    in.width = frame.width;
+    in.height = frame.height;
+  }
+  else if (frame.width != in.width || frame.height != in.height)
+  {
+    error = "frame " + std::to_string(k) + " of '" + in.name + "' is " +
+      std::to_string(frame.width) + "x" + std::to_string(frame.height) + ", the first was " +
+      std::to_string(in.width) + "x" + std::to_string(in.height);
+    return false;
+  }
+  return true;
+}
+
+struct FrameWriter::Internals
+{
+  std::string name;
+  bool video = false;
+  int width = 0, height = 0;
+  cv::VideoWriter writer;
+};
+
+FrameWriter::FrameWriter()
+  : Internal(new Internals)
+{
+}
+
+FrameWriter::~FrameWriter()
+{
+  this->Close();
+}
+
+bool FrameWriter::IsVideo(const std::string& name)
+{
+  const std::string ext = Extension(name);
+  return ext == ".mp4" || ext == ".avi" || ext == ".mov" || ext == ".mkv";
+}
+
+bool FrameWriter::Open(
+  const std::string& name, int width, int height, double framesPerSecond, std::string& error)
+{
+  Internals& in = *this->Internal;
+  this->Close();
+  in = Internals();
+  in.name = name;
+  in.width = width;
+  in.height = height;
+  if (!(width > 0 && height > 0) || static_cast<long long>(width) * height > kMaxImagePixels)
+  {
+    error = "cannot write frames of " + std::to_string(width) + "x" + std::to_string(height);
+    return false;
+  }
+  const std::string folder = DirName(name);
+  if (!FileExists(folder))
+  {
+    error = "the folder '" + folder + "' of '" + name + "' does not exist";
+    return false;
+  }
+  std::string patternError;
+  const bool pattern = IsFramePattern(name, &patternError);
+  if (!patternError.empty())
+  {
+    error = patternError;
+    return false;
+  }
+  in.video = IsVideo(name);
+  if (pattern && in.video)
+  {
+    error = "'" + name + "' is both a frame pattern and a video name";
+    return false;
+  }
+  if (pattern)
+  {
+    if (!cv::haveImageWriter(FrameFileName(name, 0)))
+    {
+      error = "no image writer for the extension of '" + name + "' (use .png or .jpg)";
+      return false;
+    }
+    return true;
+  }
+  if (!in.video)
+  {
+    error = "'" + name + "' is neither a frame pattern (frame_%05d.png) nor a video (.mp4, .avi)";
+    return false;
+  }
+  if (!(framesPerSecond > 0.0 && framesPerSecond <= 1000.0))
+  {
+    error = "a video needs a frame rate in (0, 1000] frames a second";
+    return false;
+  }
+  const std::string ext = Extension(name);
+  const int fourcc = ext == ".avi" ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')
+                                   : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
+  try
+  {
+    in.writer.open(name, cv::CAP_FFMPEG, fourcc, framesPerSecond, cv::Size(width, height));
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "cannot write '" + name + "': " + e.msg;
+    return false;
+  }
+  if (!in.writer.isOpened())
+  {
+    error = "cannot write '" + name + "' (no encoder for it, or the file cannot be created)";
+    return false;
+  }
+  return true;
+}
+
+bool FrameWriter::Write(long long index, const Frame& frame, std::string& error)
+{
+  Internals& in = *this->Internal;
+  if (frame.width != in.width || frame.height != in.height ||
+    frame.rgba.size() != static_cast<std::size_t>(in.width) * in.height * 4)
+  {
+    error = "a frame of " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+      " for an output of " + std::to_string(in.width) + "x" + std::to_string(in.height);
+    return false;
+  }
+  cv::Mat rgba(frame.height, frame.width, CV_8UC4, const_cast<std::uint8_t*>(frame.rgba.data()));
+  try
+  {
+    if (in.video)
+    {
+      cv::Mat bgr;
+      cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
+      in.writer.write(bgr);
+      return true;
+    }
+    // Alpha where the format keeps it (PNG, TIFF, WebP); JPEG and the others get BGR.
+    const std::string ext = Extension(in.name);
+    const bool alpha = ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".webp";
+    cv::Mat out;
+    cv::cvtColor(rgba, out, alpha ? cv::COLOR_RGBA2BGRA : cv::COLOR_RGBA2BGR);
+    const std::string file = FrameFileName(in.name, index);
+    if (!cv::imwrite(file, out))
+    {
+      error = "cannot write '" + file + "'";
+      return false;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "cannot write frame " + std::to_string(index) + " of '" + in.name + "': " + e.msg;
+    return false;
+  }
+  return true;
+}
+
+void FrameWriter::Close()
+{
+  if (this->Internal && this->Internal->writer.isOpened())
+  {
+    this->Internal->writer.release();
+  }
+}
+} // namespace catar

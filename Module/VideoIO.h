@@ -1,0 +1,79 @@
+// CatadioptricAR Core: frames in and out of sequences (OpenCV's VideoCapture and VideoWriter, and
+// numbered image files).
+//
+// A sequence is named by a video file (anything OpenCV's FFmpeg backend reads; written: .mp4 as
+// MPEG-4 part 2, .avi as Motion JPEG) or by a printf pattern with one integer conversion
+// (`frames/frame_%05d.png`, `%d`, `%3d`; no other `%` but `%%`). Frames are RGBA, 8 bits a channel,
+// the top row first (as OpenCV and image files have them).
+#ifndef catarVideoIO_h
+#define catarVideoIO_h
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace catar
+{
+/// An RGBA frame, the top row first.
+struct Frame
+{
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba; ///< width * height * 4
+};
+
+/// True when name holds exactly one integer conversion (%d, %5d, %05d) and no other conversion
+/// but %%; false with a sentence in error when it has a `%` that is not one of those.
+bool IsFramePattern(const std::string& name, std::string* error = nullptr);
+/// The pattern with its conversion filled in (name as it is when it is not a pattern).
+std::string FrameFileName(const std::string& pattern, long long index);
+
+/// Frames read from a video file or a numbered image sequence.
+class FrameReader
+{
+public:
+  FrameReader();
+  ~FrameReader();
+  /// Opens name: a pattern (the sequence starts at index 0, or 1 when there is no file 0, and
+  /// runs while the files exist) or a video file. False with a sentence in error.
+  bool Open(const std::string& name, std::string& error);
+  /// The number of frames (for a video, what its container says).
+  long long GetNumberOfFrames() const;
+  /// Frames a second: the video's, or 0 for an image sequence (no rate of its own).
+  double GetFrameRate() const;
+  /// Frame k (0-based). Reading in order is fastest; a video seeks back by reopening. False with
+  /// a sentence in error (past the end, an unreadable file, a size that differs from frame 0's).
+  bool Read(long long k, Frame& frame, std::string& error);
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+/// Frames written as numbered image files (a pattern; the format from the extension, as
+/// cv::imwrite) or a video (.mp4, .avi).
+class FrameWriter
+{
+public:
+  FrameWriter();
+  ~FrameWriter();
+  /// Whether name is written as a video (by its extension: .mp4, .avi, .mov, .mkv).
+  static bool IsVideo(const std::string& name);
+  /// Prepares the output: a pattern, or a video of the given size and frame rate. False with a
+  /// sentence in error (not a pattern nor a video name, no encoder, a folder that does not exist).
+  bool Open(
+    const std::string& name, int width, int height, double framesPerSecond, std::string& error);
+  /// Writes a frame as number `index` (patterns) or as the video's next frame. Frames of another
+  /// size than Open's are refused.
+  bool Write(long long index, const Frame& frame, std::string& error);
+  /// Finishes the video (also done by the destructor).
+  void Close();
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+} // namespace catar
+
+#endif
