@@ -212,6 +212,13 @@ bool FrameReader::Open(const std::string& name, std::string& error)
     error = "cannot open '" + name + "'";
     return false;
   }
+  if (!FrameWriter::IsVideo(name) && cv::haveImageReader(name))
+  {
+    // One image: a sequence of one frame.
+    in.pattern = true;
+    in.count = 1;
+    return true;
+  }
   try
   {
     in.capture.open(name, cv::CAP_FFMPEG);

@@ -36,7 +36,8 @@ public:
   FrameReader();
   ~FrameReader();
   /// Opens name: a pattern (the sequence starts at index 0, or 1 when there is no file 0, and
-  /// runs while the files exist) or a video file. False with a sentence in error.
+  /// runs while the files exist), one image file (one frame) or a video file. False with a
+  /// sentence in error.
   bool Open(const std::string& name, std::string& error);
   /// The number of frames (for a video, what its container says).
   long long GetNumberOfFrames() const;

@@ -624,6 +624,18 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   return true;
 }
 
+vtkCatadioptricProjection* vtkCatadioptricSceneRenderer::GetProjection(int pipeline)
+{
+  const auto& p = this->Internal->Projections;
+  return pipeline >= 0 && pipeline < static_cast<int>(p.size()) ? p[pipeline].Get() : nullptr;
+}
+
+vtkCatadioptricLighting* vtkCatadioptricSceneRenderer::GetLighting(int pipeline)
+{
+  const auto& l = this->Internal->Lightings;
+  return pipeline >= 0 && pipeline < static_cast<int>(l.size()) ? l[pipeline].Get() : nullptr;
+}
+
 int vtkCatadioptricSceneRenderer::GetNumberOfFrames()
 {
   return this->Internal->Loaded ? static_cast<int>(this->Internal->Frames.count) : 0;

@@ -27,6 +27,8 @@
 #include <memory> // for std::unique_ptr
 
 class vtkCatadioptricCamera;
+class vtkCatadioptricLighting;
+class vtkCatadioptricProjection;
 class vtkImageData;
 class vtkLightCollection;
 
@@ -66,6 +68,12 @@ public:
 
   /// The number of per-object pipelines (projection, lighting, sort) of the last LoadScene().
   int GetNumberOfPipelines();
+  ///@{
+  /// Pipeline i's projection and lighting filters (the lighting is null in an unlit scene; both
+  /// null for i out of range): to inspect what a frame recomputed.
+  vtkCatadioptricProjection* GetProjection(int pipeline);
+  vtkCatadioptricLighting* GetLighting(int pipeline);
+  ///@}
 
   /// One line per remeshed object of the last LoadScene(): triangle counts, steps, achieved edge
   /// bend ("" when nothing was remeshed).
