@@ -222,6 +222,7 @@ vtkCatadioptricProjection::vtkCatadioptricProjection() = default;
 vtkCatadioptricProjection::~vtkCatadioptricProjection() = default;
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricProjection);
+vtkCatadioptricCameraSlotTrajectoryMacro(vtkCatadioptricProjection);
 
 int vtkCatadioptricProjection::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
@@ -236,6 +237,12 @@ int vtkCatadioptricProjection::RequestInformation(
   else
   {
     outInfo->Remove(vtkCatadioptricCamera::IMAGE_SIZE());
+  }
+  std::string error;
+  if (!this->CameraSlot.AnnounceTimeSteps(outInfo, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
   }
   return 1;
 }
@@ -256,7 +263,7 @@ int vtkCatadioptricProjection::RequestData(
     vtkErrorMacro("Bad input mesh: " << inputError);
     return 0;
   }
-  vtkCatadioptricCamera* camera = this->ResolveCamera();
+  vtkCatadioptricCamera* camera = this->ResolveCamera(outputVector->GetInformationObject(0));
   if (!camera)
   {
     return 0;

@@ -159,7 +159,7 @@ protected:
   ~vtkCatadioptricRemesher() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  vtkCatadioptricCamera* ResolveCamera();
+  vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
 
   vtkCatadioptricCameraSlot CameraSlot;
   int Mode = TARGET_AREA;

@@ -74,6 +74,7 @@ vtkCatadioptricEnvironmentSource::~vtkCatadioptricEnvironmentSource()
 }
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricEnvironmentSource);
+vtkCatadioptricCameraSlotTrajectoryMacro(vtkCatadioptricEnvironmentSource);
 
 int vtkCatadioptricEnvironmentSource::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
@@ -87,13 +88,19 @@ int vtkCatadioptricEnvironmentSource::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  std::string error;
+  if (!this->CameraSlot.AnnounceTimeSteps(outInfo, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
   return 1;
 }
 
 int vtkCatadioptricEnvironmentSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkCatadioptricCamera* camera = this->ResolveCamera();
+  vtkCatadioptricCamera* camera = this->ResolveCamera(outputVector->GetInformationObject(0));
   if (!camera)
   {
     return 0;

@@ -48,6 +48,15 @@ public:
   ///@}
 
   ///@{
+  /// A trajectory file (README "Sequences": TUM or matrix poses) that moves the camera over time:
+  /// its poses' times are announced as the output's TIME_STEPS (ParaView's animation plays
+  /// them), and each update takes the pose at the time it asks for. Null or "" (the default):
+  /// the camera's own pose.
+  void SetTrajectoryFileName(const char* fileName);
+  const char* GetTrajectoryFileName();
+  ///@}
+
+  ///@{
   /// A mirror in place of the camera's (ParaView's panel sets these): a type of
   /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
   /// that type's numbers in the order of its keys (README, "Calibration files").
@@ -126,7 +135,7 @@ protected:
 
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  vtkCatadioptricCamera* ResolveCamera();
+  vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
   /// Brings the cached panorama of PANORAMA mode up to date (read or generated); false after an
   /// error (reported).
   bool UpdatePanorama(vtkCatadioptricCamera* camera);

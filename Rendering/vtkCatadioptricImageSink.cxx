@@ -12,6 +12,9 @@
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <set>
+#include <vector>
+
 vtkCatadioptricImageSink::vtkCatadioptricImageSink()
 {
   this->SetNumberOfInputPorts(3);
@@ -53,6 +56,32 @@ int vtkCatadioptricImageSink::RequestInformation(
   }
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 4);
+  // Time: the union of the inputs' time steps (a frame source or projections that follow a
+  // trajectory), so that the image plays with them.
+  std::set<double> times;
+  for (int port = 0; port < this->GetNumberOfInputPorts(); ++port)
+  {
+    for (int i = 0; i < inputVector[port]->GetNumberOfInformationObjects(); ++i)
+    {
+      vtkInformation* in = inputVector[port]->GetInformationObject(i);
+      const int n = in->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+      const double* steps = in->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+      for (int k = 0; k < n && steps; ++k)
+      {
+        times.insert(steps[k]);
+      }
+    }
+  }
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (!times.empty())
+  {
+    const std::vector<double> steps(times.begin(), times.end());
+    outInfo->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(), static_cast<int>(steps.size()));
+    const double range[2] = { steps.front(), steps.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
   return 1;
 }
 

@@ -60,16 +60,17 @@ void vtkCatadioptricRayTracer::SetCalibrationFileName(const char* fileName)
 }
 
 vtkCatadioptricCameraSlotMirrorMacro(vtkCatadioptricRayTracer);
+vtkCatadioptricCameraSlotTrajectoryMacro(vtkCatadioptricRayTracer);
 
 const char* vtkCatadioptricRayTracer::GetCalibrationFileName()
 {
   return this->CameraSlot.GetCalibrationFileName();
 }
 
-vtkCatadioptricCamera* vtkCatadioptricRayTracer::ResolveCamera()
+vtkCatadioptricCamera* vtkCatadioptricRayTracer::ResolveCamera(vtkInformation* outInfo)
 {
   std::string error;
-  vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error);
+  vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error, outInfo);
   if (!camera)
   {
     vtkErrorMacro(<< error);
@@ -351,12 +352,30 @@ std::string MakeTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
 }
 } // namespace
 
+int vtkCatadioptricRayTracer::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // The trajectory's times (the meshes are still: the camera moves).
+  std::string error;
+  if (this->CameraSlot.GetTrajectoryFileName() &&
+    !this->CameraSlot.AnnounceTimeSteps(outputVector->GetInformationObject(0), error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  return 1;
+}
+
 int vtkCatadioptricRayTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->NumberOfMirrorRays = this->NumberOfTracedRays = 0;
   this->NumberOfHits = this->NumberOfShadowRays = 0;
-  vtkCatadioptricCamera* camera = this->ResolveCamera();
+  vtkCatadioptricCamera* camera = this->ResolveCamera(outputVector->GetInformationObject(0));
   if (!camera)
   {
     return 0;

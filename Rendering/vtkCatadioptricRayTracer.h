@@ -63,6 +63,15 @@ public:
   ///@}
 
   ///@{
+  /// A trajectory file (README "Sequences": TUM or matrix poses) that moves the camera over time:
+  /// its poses' times are announced as the output's TIME_STEPS (ParaView's animation plays
+  /// them), and each update takes the pose at the time it asks for. Null or "" (the default):
+  /// the camera's own pose.
+  void SetTrajectoryFileName(const char* fileName);
+  const char* GetTrajectoryFileName();
+  ///@}
+
+  ///@{
   /// A mirror in place of the camera's (ParaView's panel sets these): a type of
   /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
   /// that type's numbers in the order of its keys (README, "Calibration files").
@@ -104,11 +113,12 @@ protected:
   vtkCatadioptricRayTracer();
   ~vtkCatadioptricRayTracer() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// ImageSize, else the camera's image size.
   void ImageSizeWithoutFrame(vtkInformationVector** inputVector, int size[2]) override;
 
-  vtkCatadioptricCamera* ResolveCamera();
+  vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
 
   vtkCatadioptricCameraSlot CameraSlot;
   int Samples = 1;

@@ -3,10 +3,14 @@
 #include "CalibrationIO.h"
 #include "CameraModel.h"
 #include "Mirror.h"
+#include "Trajectory.h"
 
 #include "vtkCatadioptricCamera.h"
+#include "vtkInformation.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cmath>
 
 vtkCatadioptricCameraSlot::vtkCatadioptricCameraSlot() = default;
 vtkCatadioptricCameraSlot::~vtkCatadioptricCameraSlot() = default;
@@ -88,7 +92,106 @@ double vtkCatadioptricCameraSlot::GetMirrorParameter(int i) const
                                                                        : 0.0;
 }
 
-vtkCatadioptricCamera* vtkCatadioptricCameraSlot::Resolve(std::string& error)
+bool vtkCatadioptricCameraSlot::SetTrajectoryFileName(const char* fileName)
+{
+  const std::string name = fileName ? fileName : "";
+  if (name == this->TrajectoryName)
+  {
+    return false;
+  }
+  this->TrajectoryName = name;
+  return true;
+}
+
+const char* vtkCatadioptricCameraSlot::GetTrajectoryFileName() const
+{
+  return this->TrajectoryName.empty() ? nullptr : this->TrajectoryName.c_str();
+}
+
+const catar::Trajectory* vtkCatadioptricCameraSlot::LoadTrajectory(std::string& error)
+{
+  if (this->TrajectoryName.empty())
+  {
+    return nullptr;
+  }
+  if (!this->LoadedTrajectory || this->LoadedTrajectoryName != this->TrajectoryName)
+  {
+    auto trajectory = std::make_shared<catar::Trajectory>();
+    if (!catar::LoadTrajectory(this->TrajectoryName, *trajectory, error))
+    {
+      error = "TrajectoryFileName: " + error;
+      this->LoadedTrajectory = nullptr;
+      return nullptr;
+    }
+    this->LoadedTrajectory = trajectory;
+    this->LoadedTrajectoryName = this->TrajectoryName;
+  }
+  return this->LoadedTrajectory.get();
+}
+
+bool vtkCatadioptricCameraSlot::AnnounceTimeSteps(vtkInformation* outInfo, std::string& error)
+{
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (this->TrajectoryName.empty())
+  {
+    return true;
+  }
+  const catar::Trajectory* trajectory = this->LoadTrajectory(error);
+  if (!trajectory)
+  {
+    return false;
+  }
+  std::vector<double> times;
+  times.reserve(trajectory->poses.size());
+  for (const catar::TimedPose& p : trajectory->poses)
+  {
+    times.push_back(p.time);
+  }
+  outInfo->Set(
+    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+  const double range[2] = { times.front(), times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return true;
+}
+
+vtkCatadioptricCamera* vtkCatadioptricCameraSlot::Resolve(
+  std::string& error, vtkInformation* outInfo)
+{
+  vtkCatadioptricCamera* camera = this->ResolveMirror(error);
+  if (!camera || this->TrajectoryName.empty())
+  {
+    return camera;
+  }
+  const catar::Trajectory* trajectory = this->LoadTrajectory(error);
+  if (!trajectory)
+  {
+    return nullptr;
+  }
+  double time = trajectory->poses.front().time;
+  if (outInfo && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    time = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+  // The camera at that time's pose, remade only when the camera or the time changed.
+  if (!this->TimedCamera || this->TimedCameraFrom != camera ||
+    this->TimedCameraBase != camera->GetMTime() || !(this->TimedCameraTime == time))
+  {
+    catar::CameraModel model = camera->GetModel();
+    model.worldToCamera = trajectory->PoseAt(time);
+    if (!this->TimedCamera)
+    {
+      this->TimedCamera = vtkSmartPointer<vtkCatadioptricCamera>::New();
+    }
+    this->TimedCamera->SetModel(model);
+    this->TimedCameraFrom = camera;
+    this->TimedCameraBase = camera->GetMTime();
+    this->TimedCameraTime = time;
+  }
+  return this->TimedCamera;
+}
+
+vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolveMirror(std::string& error)
 {
   vtkCatadioptricCamera* base = this->ResolveBase(error);
   if (!base || this->MirrorType.empty())

@@ -14,10 +14,16 @@
 #include "vtkSmartPointer.h"            // for members
 #include "vtkType.h"                    // for vtkMTimeType
 
+#include <memory> // for members
 #include <string> // for members
 #include <vector> // for members
 
 class vtkCatadioptricCamera;
+class vtkInformation;
+namespace catar
+{
+struct Trajectory;
+}
 
 class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricCameraSlot
 {
@@ -49,13 +55,36 @@ public:
   }
   double GetMirrorParameter(int i) const;
 
+  /// A trajectory file (README "Sequences": TUM or matrix poses; null or "" for none); returns
+  /// true when it changed. With one, the camera's pose is the trajectory's at the time the
+  /// pipeline asks for.
+  bool SetTrajectoryFileName(const char* fileName);
+  const char* GetTrajectoryFileName() const;
+
+  /// In an algorithm's RequestInformation: with a trajectory, its poses' times as the output's
+  /// TIME_STEPS and TIME_RANGE (so ParaView's animation plays them); without one, removes both.
+  /// False with a sentence in error when the file cannot be read.
+  bool AnnounceTimeSteps(vtkInformation* outInfo, std::string& error);
+
   /// The camera to use now: the object if set, else the one loaded from the file; with the mirror
-  /// replaced when a mirror type is set. Returns nullptr and says why in `error` when neither
-  /// gives a camera, or the mirror is not a usable one of its type.
-  vtkCatadioptricCamera* Resolve(std::string& error);
+  /// replaced when a mirror type is set; with a trajectory, at the pose of the time outInfo asks
+  /// for (UPDATE_TIME_STEP; the first pose when it asks for none). Returns nullptr and says why
+  /// in `error` when neither gives a camera, the mirror is not a usable one of its type, or the
+  /// trajectory cannot be read.
+  vtkCatadioptricCamera* Resolve(std::string& error, vtkInformation* outInfo = nullptr);
 
 private:
   vtkCatadioptricCamera* ResolveBase(std::string& error);
+  vtkCatadioptricCamera* ResolveMirror(std::string& error);
+  const catar::Trajectory* LoadTrajectory(std::string& error);
+
+  std::string TrajectoryName;
+  std::string LoadedTrajectoryName;
+  std::shared_ptr<catar::Trajectory> LoadedTrajectory;
+  vtkSmartPointer<vtkCatadioptricCamera> TimedCamera; // the camera at the asked time's pose
+  vtkCatadioptricCamera* TimedCameraFrom = nullptr;
+  vtkMTimeType TimedCameraBase = 0;
+  double TimedCameraTime = 0.0;
 
   std::string MirrorType;
   std::vector<double> MirrorParameters;
@@ -110,11 +139,29 @@ private:
   }
 
 /**
+ * Defines, in a .cxx, SetTrajectoryFileName and GetTrajectoryFileName of an algorithm that holds
+ * a `vtkCatadioptricCameraSlot CameraSlot`.
+ */
+#define vtkCatadioptricCameraSlotTrajectoryMacro(thisClass)                                        \
+  void thisClass::SetTrajectoryFileName(const char* fileName)                                      \
+  {                                                                                                \
+    if (this->CameraSlot.SetTrajectoryFileName(fileName))                                          \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  const char* thisClass::GetTrajectoryFileName()                                                   \
+  {                                                                                                \
+    return this->CameraSlot.GetTrajectoryFileName();                                               \
+  }
+
+/**
  * Defines, in a .cxx, the camera members of an algorithm that holds a
  * `vtkCatadioptricCameraSlot CameraSlot`: SetCamera, GetCamera, SetCalibrationFileName,
  * GetCalibrationFileName, the mirror override (SetMirrorType, SetNumberOfMirrorParameters,
- * SetMirrorParameter and their getters), GetMTime (including the camera's) and ResolveCamera
- * (reports failures with vtkErrorMacro).
+ * SetMirrorParameter and their getters), GetMTime (including the camera's) and
+ * ResolveCamera(outInfo) (the camera at the time outInfo asks for; reports failures with
+ * vtkErrorMacro). Algorithms that follow a trajectory add vtkCatadioptricCameraSlotTrajectoryMacro.
  */
 #define vtkCatadioptricCameraSlotMacro(thisClass)                                                  \
   void thisClass::SetCamera(vtkCatadioptricCamera* camera)                                         \
@@ -145,11 +192,11 @@ private:
     const vtkMTimeType camera = this->CameraSlot.GetCameraMTime();                                 \
     return own > camera ? own : camera;                                                            \
   }                                                                                                \
-  vtkCatadioptricCameraSlotMirrorMacro(thisClass) vtkCatadioptricCamera*                           \
-  thisClass::ResolveCamera()                                                                       \
+  vtkCatadioptricCameraSlotMirrorMacro(thisClass) vtkCatadioptricCamera* thisClass::ResolveCamera( \
+    vtkInformation* outInfo)                                                                       \
   {                                                                                                \
     std::string error;                                                                             \
-    vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error);                               \
+    vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error, outInfo);                      \
     if (!camera)                                                                                   \
     {                                                                                              \
       vtkErrorMacro(<< error);                                                                     \

@@ -5,10 +5,16 @@
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricSceneRenderer.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
+#include "vtkSphereSource.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
+#include "TestUtilities.h"
 #include "Trajectory.h"
 #include "VideoIO.h"
 
@@ -448,4 +454,52 @@ TEST(Sequence, BadSequencesAreRefusedWithASentence)
     EXPECT_NE(std::string(r->GetLastError()).find(c.expect), std::string::npos)
       << c.extra << ": " << r->GetLastError();
   }
+}
+
+// The projection filter with a trajectory: the poses' times as TIME_STEPS; an update at a time
+// takes the trajectory's pose there (between poses: PoseAt's interpolation), written to the
+// output's field data; an unreadable trajectory is an error naming the property.
+TEST(Sequence, ProjectionFollowsATrajectoryInTime)
+{
+  const std::string dir = Folder("filter");
+  std::string error;
+  const catar::Trajectory trajectory = SlidingCamera(3);
+  ASSERT_TRUE(catar::SaveTrajectory(dir + "/poses.txt", trajectory, "matrix", error)) << error;
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.0, -0.3, 0.95);
+  sphere->SetRadius(0.03);
+  vtkNew<vtkCatadioptricProjection> projection;
+  projection->SetInputConnection(sphere->GetOutputPort());
+  projection->SetCamera(catar_test::DemoCamera());
+  projection->SetTrajectoryFileName((dir + "/poses.txt").c_str());
+  projection->UpdateInformation();
+  vtkInformation* info = projection->GetOutputInformation(0);
+  ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  ASSERT_EQ(info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()), 3);
+  EXPECT_DOUBLE_EQ(info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS())[2], 0.6);
+  for (double t : { 0.0, 0.3, 0.45, 0.6, 2.0 })
+  {
+    ASSERT_TRUE(projection->UpdateTimeStep(t));
+    vtkNew<vtkCatadioptricCamera> used;
+    ASSERT_TRUE(used->ReadFromFieldData(projection->GetOutput()->GetFieldData()));
+    double m[16];
+    used->GetWorldToCameraElements(m);
+    const catar::Mat4 expected = trajectory.PoseAt(t);
+    for (int i = 0; i < 16; ++i)
+    {
+      EXPECT_NEAR(m[i], expected(i / 4, i % 4), 1e-15) << "t " << t << " element " << i;
+    }
+  }
+  // No trajectory: no time steps, the camera's own pose.
+  projection->SetTrajectoryFileName(nullptr);
+  projection->UpdateInformation();
+  EXPECT_FALSE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  // An unreadable one.
+  Write(dir + "/bad.txt", "0 1 2\n");
+  projection->SetTrajectoryFileName((dir + "/bad.txt").c_str());
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(projection);
+  EXPECT_FALSE(projection->UpdateTimeStep(0.0));
+  EXPECT_GE(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("TrajectoryFileName"), std::string::npos) << errors->Last;
 }

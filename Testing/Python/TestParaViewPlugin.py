@@ -137,6 +137,52 @@ def main():
         compositor.UpdatePipeline()
         assert count(servermanager.Fetch(compositor).GetPointData().GetScalars()) == magenta
 
+        # A trajectory (a timestamp and world-to-camera, row-major): its times become the
+        # pipeline's time steps; at each time the sphere is where the camera at that pose sees it,
+        # and Save Animation writes one image a time step.
+        trajectory = os.path.join(d, "poses.txt")
+        shifts = [0.0, 0.02, 0.04]
+        with open(trajectory, "w") as f:
+            for k, dx in enumerate(shifts):
+                f.write("%g 1 0 0 %g  0 0 -1 1.0  0 1 0 0.14  0 0 0 1\n" % (0.5 * k, -dx))
+        for proxy in (projection, frame):
+            proxy.TrajectoryFileName = trajectory
+        compositor.UpdatePipelineInformation()
+        assert list(projection.TimestepValues) == [0.0, 0.5, 1.0], projection.TimestepValues
+        assert list(compositor.TimestepValues) == [0.0, 0.5, 1.0], compositor.TimestepValues
+        moving = car.vtkCatadioptricCamera()
+        assert moving.Load(calib), moving.GetLastError()
+        seen = []
+        for k, dx in enumerate(shifts):
+            compositor.UpdatePipeline(0.5 * k)
+            pixels = servermanager.Fetch(compositor).GetPointData().GetScalars()
+            elements = [1, 0, 0, -dx, 0, 0, -1, 1.0, 0, 1, 0, 0.14, 0, 0, 0, 1]
+            moving.SetWorldToCameraElements(elements)
+            assert moving.ProjectWorldPoint([0.06, -0.32, 0.92], px, mp) == 0
+            x, y = int(round(px[0])), int(round(px[1]))
+            assert pixels.GetTuple4((dims[1] - 1 - y) * dims[0] + x) == (255.0, 0.0, 255.0, 255.0), (k, px)
+            seen.append((x, y))
+        assert len(set(seen)) == 3, seen
+        scene = simple.GetAnimationScene()
+        scene.UpdateAnimationUsingDataTimeSteps()
+        view = simple.CreateView("RenderView")
+        display = simple.Show(compositor, view)
+        # Its true colours (RGBA, no colour map).
+        simple.ColorBy(display, ("POINTS", pixels.GetName()))
+        display.MapScalars = 0
+        view.CameraParallelProjection = 1
+        simple.ResetCamera(view)
+        frames = os.path.join(d, "frame.png")
+        simple.SaveAnimation(frames, view, ImageResolution=[160, 120], FrameWindow=[0, 2])
+        written = sorted(n for n in os.listdir(d) if n.startswith("frame") and n.endswith(".png"))
+        assert len(written) == 3, written
+        contents = set(open(os.path.join(d, n), "rb").read() for n in written)
+        assert len(contents) == 3, "the frames differ"
+        for proxy in (projection, frame):
+            proxy.TrajectoryFileName = ""
+        simple.Delete(view)
+        compositor.UpdatePipeline(0.0)
+
         # Shown in a render view without a frame: no error at all (the image views used to print
         # "Incorrect dimensionality": the extent announced before the data was 1x1).
         from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
