@@ -3,6 +3,7 @@
 #include "CalibrationIO.h"
 #include "ConfigReader.h"
 #include "DemoSceneText.h" // generated: kDemoSceneText
+#include "Markers.h"
 
 #include <Eigen/Geometry>
 
@@ -195,7 +196,7 @@ SceneObject ReadObject(
     fs::CheckKeys(node,
       { "name", "type", "file", "size", "radius", "tube_radius", "height", "resolution",
         "translate", "rotate", "scale", "color", "opacity", "face_colors", "pattern",
-        "pattern_size", "texture", "remesh", "material", "keyframes" });
+        "pattern_size", "texture", "remesh", "material", "keyframes", "id", "dictionary" });
     SceneObject o;
     o.type = fs::String(node, "type", "");
     o.file = fs::String(node, "file", "");
@@ -212,10 +213,14 @@ SceneObject ReadObject(
       o.file = Resolve(baseDir, o.file);
     }
     else if (o.type != "box" && o.type != "sphere" && o.type != "torus" && o.type != "cylinder" &&
-      o.type != "plane")
+      o.type != "plane" && o.type != "marker")
     {
       throw fs::ParseError(
-        "unknown type '" + o.type + "' (mesh, box, sphere, torus, cylinder, plane)");
+        "unknown type '" + o.type + "' (mesh, box, sphere, torus, cylinder, plane, marker)");
+    }
+    if (o.type != "marker" && (!node["id"].empty() || !node["dictionary"].empty()))
+    {
+      throw fs::ParseError("'id' and 'dictionary' are keys of a marker");
     }
     o.name = fs::String(node, "name", o.type);
     const fs::Node size = node["size"];
@@ -278,6 +283,35 @@ SceneObject ReadObject(
     if (!o.texture.empty() && o.texture != "checker")
     {
       o.texture = Resolve(baseDir, o.texture);
+    }
+    if (o.type == "marker")
+    {
+      // An ArUco marker (Markers.h): `size` the black square's side, a white margin of one
+      // cell around it; white unless a colour is given; textured with its own pattern.
+      BoardMarker m;
+      const double id = fs::Number(node, "id");
+      m.id = id >= 0 && id == std::floor(id) && id < 1e6 ? static_cast<int>(id) : -1;
+      m.size = o.size.x();
+      MarkerBoard board;
+      board.dictionary = fs::String(node, "dictionary", board.dictionary);
+      board.markers = { m };
+      const std::string problem = ValidateMarkerBoard(board);
+      if (!problem.empty() || m.id < 0)
+      {
+        throw fs::ParseError(
+          m.id < 0 ? "'id' must be a non-negative integer" : problem.substr(problem.find(':') + 2));
+      }
+      if (!node["texture"].empty())
+      {
+        throw fs::ParseError("a marker is textured with its own pattern: no 'texture'");
+      }
+      o.markerId = m.id;
+      o.markerDictionary = board.dictionary;
+      o.texture = "marker";
+      if (node["color"].empty())
+      {
+        o.color = Vec3::Ones();
+      }
     }
     o.remesh = ReadRemesh(node["remesh"], defaultRemesh);
     ReadKeyframes(
@@ -750,7 +784,7 @@ double ProceduralTriangles(const std::string& type, int resolution)
   {
     return 4.0 * r;
   }
-  if (type == "plane")
+  if (type == "plane" || type == "marker")
   {
     return 2.0 * resolution * resolution;
   }

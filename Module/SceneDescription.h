@@ -39,7 +39,8 @@ struct SceneObject
 {
   std::string name;
   /// "mesh" (a file any VTK reader takes) or a procedural object: "box", "sphere", "torus",
-  /// "cylinder", "plane".
+  /// "cylinder", "plane", "marker" (an ArUco marker, Markers.h: keys `id`, `dictionary`, and
+  /// `size` the side of its black square; a white margin of one cell around it).
   std::string type = "box";
   std::string file;                ///< mesh file, resolved against the scene file's folder
   Vec3 size = Vec3(0.1, 0.1, 0.1); ///< box edge lengths; plane uses x, y
@@ -61,6 +62,8 @@ struct SceneObject
   /// the scene file's folder). Boxes get texture coordinates per face (the paper's section 3.3);
   /// meshes use their own.
   std::string texture;
+  int markerId = 0;                             ///< type "marker"
+  std::string markerDictionary = "DICT_4X4_50"; ///< type "marker"
   // Material (used when the scene is lit): coefficients times the object's colour, and the
   // specular colour and power.
   double ambient = 0.2;

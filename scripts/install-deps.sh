@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages CatadioptricAR needs (ParaView 5.11's SDK with its VTK 9.2, CGAL,
-# Eigen, OpenCV, OpenMesh, GoogleTest, Google Benchmark, Embree, yaml-cpp, Xvfb).
+# Eigen, OpenCV, OpenMesh, GoogleTest, Google Benchmark, Embree, yaml-cpp, OpenGV, Ceres, CLI11,
+# Xvfb).
 #   scripts/install-deps.sh               install (runs apt-get update first)
 #   scripts/install-deps.sh --if-missing  do nothing when everything is already installed
 # Never install libvtk9-dev or python3-vtk9: they conflict with paraview-dev.
@@ -8,9 +9,10 @@ set -euo pipefail
 packages=(build-essential cmake git pkg-config clang-format
   paraview paraview-dev python3-paraview qtbase5-dev qttools5-dev libqt5svg5-dev
   libqt5opengl5-dev qtxmlpatterns5-dev-tools libqt5x11extras5-dev
-  libcgal-dev libeigen3-dev libopencv-dev libopenmesh-dev libgtest-dev
+  libcgal-dev libeigen3-dev libopencv-dev libopencv-contrib-dev libopenmesh-dev libgtest-dev
   libbenchmark-dev libembree-dev libyaml-cpp-dev zlib1g-dev liblzma-dev xvfb xauth
-  libdouble-conversion-dev liblz4-dev libutfcpp-dev libopenmpi-dev libglew-dev)
+  libdouble-conversion-dev liblz4-dev libutfcpp-dev libopenmpi-dev libglew-dev
+  libopengv-dev libceres-dev libcli11-dev)
 if [[ "${1:-}" == "--if-missing" ]]; then
   missing=0
   for p in "${packages[@]}"; do

@@ -1,5 +1,7 @@
 #include "vtkCatadioptricSceneObjects.h"
 
+#include "Markers.h"
+
 #include "MeshFileCheck.h"
 #include "SafeCast.h"
 #include "SceneDescription.h"
@@ -199,6 +201,18 @@ vtkSmartPointer<vtkPolyData> Procedural(const catar::SceneObject& o)
     s->CappingOn();
     source = s;
   }
+  else if (o.type == "marker")
+  {
+    // The black square of side size and a white margin of one cell: (cells + 2) / cells wider.
+    const int cells = catar::MarkerCells(o.markerDictionary);
+    const double h = 0.5 * o.size.x() * (cells + 2) / std::max(1, cells);
+    auto s = vtkSmartPointer<vtkPlaneSource>::New();
+    s->SetOrigin(-h, -h, 0);
+    s->SetPoint1(h, -h, 0);
+    s->SetPoint2(-h, h, 0);
+    s->SetResolution(res, res);
+    source = s;
+  }
   else // plane
   {
     auto s = vtkSmartPointer<vtkPlaneSource>::New();
@@ -348,6 +362,32 @@ vtkSmartPointer<vtkImageData> CheckerTexture()
   return image;
 }
 
+// An ArUco marker with a white margin of one cell, 32 texels a cell (Markers.h), grey as RGB;
+// VTK's rows (bottom first), so that texture coordinate v = 1 is the marker's top.
+vtkSmartPointer<vtkImageData> MarkerTexture(const catar::SceneObject& o)
+{
+  const int side = 32 * (catar::MarkerCells(o.markerDictionary) + 2);
+  std::vector<std::uint8_t> grey;
+  std::string error;
+  if (!catar::MarkerImage(o.markerDictionary, o.markerId, side, 1, grey, error))
+  {
+    throw std::runtime_error("marker: " + error);
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(side, side, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int j = 0; j < side; ++j)
+  {
+    const std::uint8_t* row = grey.data() + static_cast<std::size_t>(side - 1 - j) * side;
+    for (int i = 0; i < side; ++i, p += 3)
+    {
+      std::fill(p, p + 3, row[i]);
+    }
+  }
+  return image;
+}
+
 vtkSmartPointer<vtkImageData> ReadTexture(const std::string& file)
 {
   if (file == "checker")
@@ -451,6 +491,11 @@ vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::BuildObject(
   const catar::SceneObject& object)
 {
   return ::BuildObject(object);
+}
+
+vtkSmartPointer<vtkImageData> vtkCatadioptricSceneObjects::Texture(const catar::SceneObject& o)
+{
+  return o.type == "marker" ? MarkerTexture(o) : ::ReadTexture(o.texture);
 }
 
 vtkSmartPointer<vtkImageData> vtkCatadioptricSceneObjects::ReadTexture(const std::string& file)

@@ -39,6 +39,8 @@ public:
 
   /// A texture image: "checker" (a generated 256 x 256 RGB checkerboard) or an 8-bit image file.
   static vtkSmartPointer<vtkImageData> ReadTexture(const std::string& file);
+  /// An object's texture: its marker pattern (type "marker") or ReadTexture(object.texture).
+  static vtkSmartPointer<vtkImageData> Texture(const catar::SceneObject& object);
 };
 
 #endif

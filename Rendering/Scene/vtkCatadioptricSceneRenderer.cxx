@@ -402,7 +402,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     }
     try
     {
-      in.Compositor->AddTextureData(vtkCatadioptricSceneObjects::ReadTexture(o.texture));
+      in.Compositor->AddTextureData(vtkCatadioptricSceneObjects::Texture(o));
     }
     catch (const std::exception& e)
     {

@@ -1,0 +1,82 @@
+// CatadioptricAR Core: fiducial markers (ArUco, OpenCV) seen through the mirror, for the pose of
+// each frame (PoseEstimation.h).
+//
+// A marker board file (YAML or JSON) gives the markers' layout in the world:
+//   dictionary: DICT_4X4_50          # an OpenCV predefined ArUco dictionary
+//   markers:
+//     - { id: 0, translate: [ 0.3, -0.2, 0.0 ], size: 0.12, rotate: [ 0, 0, 0 ] }
+// `size` is the side of the black square (metres); `rotate` turns the marker (printed in its own
+// x-y plane, x to the right, y up, seen from +z) by degrees about x, then y, then z, as a scene
+// object's `rotate`; a marker with no rotate lies flat, facing +z (up). The same keys make a
+// `marker` object in a scene, so one layout serves the scene that draws the markers and the
+// board that finds them.
+//
+// A convex mirror shows a marker mirror-imaged; DetectMarkers looks for them in the flipped frame
+// and maps the corners back.
+#ifndef catarMarkers_h
+#define catarMarkers_h
+
+#include "CameraModel.h"
+#include "PoseEstimation.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace catar
+{
+struct BoardMarker
+{
+  int id = 0;
+  Vec3 translate = Vec3::Zero(); ///< the marker's centre in the world
+  double size = 0.1;
+  Vec3 rotate = Vec3::Zero(); ///< degrees about x, then y, then z
+  /// The corners in the world, in OpenCV's order: the printed marker's top-left, top-right,
+  /// bottom-right, bottom-left.
+  std::array<Vec3, 4> Corners() const;
+};
+
+struct MarkerBoard
+{
+  std::string dictionary = "DICT_4X4_50";
+  std::vector<BoardMarker> markers;
+};
+
+/// Reads a board file; false with a sentence naming the key (an unknown dictionary, an id the
+/// dictionary does not have, an id given twice, a size not positive, ...).
+bool LoadMarkerBoard(const std::string& path, MarkerBoard& board, std::string& error);
+/// "" when the dictionary is one of OpenCV's predefined ones and every id is in it, else a
+/// sentence.
+std::string ValidateMarkerBoard(const MarkerBoard& board);
+
+/// A marker as an image to print or texture: side x side grey pixels (8 bits), the marker's
+/// black square and bits with a white margin of `margin` bit cells around it. False with a
+/// sentence for an unknown dictionary or id.
+bool MarkerImage(const std::string& dictionary, int id, int side, int margin,
+  std::vector<std::uint8_t>& grey, std::string& error);
+/// The number of bit cells across a marker of the dictionary, its black border included
+/// (6 for the 4x4 dictionaries); 0 for an unknown dictionary.
+int MarkerCells(const std::string& dictionary);
+
+struct MarkerDetection
+{
+  int id = 0;
+  std::array<Vec2, 4> corners; ///< pixels, in the order of BoardMarker::Corners
+};
+
+/// The markers of `dictionary` in an RGBA8 frame (top row first). mirrored: look in the
+/// left-right flipped frame (markers seen in a convex mirror), corners mapped back. Corners
+/// from lines fitted to each marker's contour. False with a sentence for an unknown dictionary or an empty frame; no markers is
+/// not an error.
+bool DetectMarkers(int width, int height, const std::uint8_t* rgba, const std::string& dictionary,
+  bool mirrored, std::vector<MarkerDetection>& detections, std::string& error);
+
+/// The pose from the detected markers of the board (their four corners each): EstimatePose on
+/// the corners of the markers the board has. result.error says why when it fails (no marker of
+/// the board detected, or EstimatePose's reasons).
+PoseResult PoseFromMarkers(const CameraModel& camera, const MarkerBoard& board,
+  const std::vector<MarkerDetection>& detections, const PoseOptions& options = {});
+} // namespace catar
+
+#endif

@@ -1,0 +1,195 @@
+// Markers (Module/Markers.h) drawn by the project's own renderer and found again through the
+// mirror: the detected corners lie where the exact forward projection puts the board's corners,
+// and the pose from them is the camera's true pose (the scene's); a sequence re-estimated from
+// rendered marker frames tracks its trajectory.
+#include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricSceneRenderer.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+
+#include "Markers.h"
+#include "Projector.h"
+#include "Trajectory.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <sys/stat.h>
+#include <vector>
+
+namespace
+{
+const double kPi = 3.14159265358979323846;
+
+std::string Folder(const std::string& name)
+{
+  const std::string dir = std::string(CATAR_TEST_OUTPUT_DIR) + "/markers-" + name;
+  mkdir(CATAR_TEST_OUTPUT_DIR, 0755);
+  mkdir(dir.c_str(), 0755);
+  return dir;
+}
+
+// Eight 20 cm markers, 45 cm apart, on the floor behind the demo camera (world z up; the camera at
+// (0, -0.14, 1) looks along +y at its mirror, which shows the floor behind it).
+catar::MarkerBoard Board()
+{
+  catar::MarkerBoard board;
+  const double xy[8][2] = { { -0.45, -0.5 }, { 0.0, -0.5 }, { 0.45, -0.5 }, { -0.45, -0.95 },
+    { 0.0, -0.95 }, { 0.45, -0.95 }, { -0.45, -0.05 }, { 0.45, -0.05 } };
+  for (int k = 0; k < 8; ++k)
+  {
+    catar::BoardMarker m;
+    m.id = k;
+    m.translate = catar::Vec3(xy[k][0], xy[k][1], 0.002);
+    m.size = 0.2;
+    m.rotate = catar::Vec3(0, 0, 10.0 * k);
+    board.markers.push_back(m);
+  }
+  return board;
+}
+
+std::string Scene(const catar::MarkerBoard& board, const std::string& extra)
+{
+  std::ostringstream s;
+  s << R"(camera:
+  image_width: 1328
+  image_height: 1048
+  camera_matrix: [ 1000.0, 0.0, 663.5, 0.0, 1000.0, 523.5, 0.0, 0.0, 1.0 ]
+  mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
+  world_to_camera: [ 1, 0, 0, 0,  0, 0, -1, 1.0,  0, 1, 0, 0.14,  0, 0, 0, 1 ]
+background: { type: environment, samples: 2 }
+objects:
+)";
+  for (const catar::BoardMarker& m : board.markers)
+  {
+    s << "  - { type: marker, id: " << m.id << ", size: " << m.size << ", translate: [ "
+      << m.translate.x() << ", " << m.translate.y() << ", " << m.translate.z() << " ], rotate: [ "
+      << m.rotate.x() << ", " << m.rotate.y() << ", " << m.rotate.z() << " ] }\n";
+  }
+  s << extra;
+  return s.str();
+}
+
+// The frame, top row first.
+std::vector<std::uint8_t> TopFirst(vtkImageData* image, int& w, int& h)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  w = dims[0];
+  h = dims[1];
+  const auto* p = static_cast<const std::uint8_t*>(image->GetScalarPointer());
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(w) * h * 4);
+  const std::size_t row = static_cast<std::size_t>(w) * 4;
+  for (int y = 0; y < h; ++y)
+  {
+    std::copy(p + row * (h - 1 - y), p + row * (h - y), out.data() + row * y);
+  }
+  return out;
+}
+
+void PoseError(
+  const catar::Mat4& estimated, const catar::Mat4& truth, double& metres, double& degrees)
+{
+  const catar::Mat3 R = estimated.topLeftCorner<3, 3>(), T = truth.topLeftCorner<3, 3>();
+  const catar::Vec3 c = -R.transpose() * estimated.topRightCorner<3, 1>();
+  const catar::Vec3 ct = -T.transpose() * truth.topRightCorner<3, 1>();
+  metres = (c - ct).norm();
+  degrees = Eigen::AngleAxisd(R * T.transpose()).angle() * 180.0 / kPi;
+}
+} // namespace
+
+TEST(Markers, FoundThroughTheMirrorWhereTheyProjectAndGiveThePose)
+{
+  const std::string dir = Folder("still");
+  const catar::MarkerBoard board = Board();
+  const std::string path = dir + "/scene.yaml";
+  std::ofstream(path) << Scene(board, "");
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName(path.c_str());
+  ASSERT_TRUE(r->Render()) << r->GetLastError();
+  int w = 0, h = 0;
+  const std::vector<std::uint8_t> frame = TopFirst(r->GetOutput(), w, h);
+  std::vector<catar::MarkerDetection> found;
+  std::string error;
+  ASSERT_TRUE(catar::DetectMarkers(w, h, frame.data(), board.dictionary, true, found, error))
+    << error;
+  // Not mirrored, the reflections do not decode.
+  std::vector<catar::MarkerDetection> unflipped;
+  ASSERT_TRUE(catar::DetectMarkers(w, h, frame.data(), board.dictionary, false, unflipped, error));
+  EXPECT_TRUE(unflipped.empty());
+  ASSERT_GE(found.size(), 6u) << "of 8";
+  // Each corner where the exact projection of the board's corner falls.
+  const catar::CameraModel camera = r->GetCamera()->GetModel();
+  const catar::Projector projector(camera);
+  double worst = 0.0;
+  for (const catar::MarkerDetection& d : found)
+  {
+    ASSERT_GE(d.id, 0);
+    ASSERT_LT(d.id, 8);
+    const std::array<catar::Vec3, 4> corners = board.markers[d.id].Corners();
+    for (int c = 0; c < 4; ++c)
+    {
+      const catar::ProjectedPoint p = projector.ProjectWorld(corners[c]);
+      ASSERT_EQ(p.status, catar::ProjectionStatus::Valid);
+      worst = std::max(worst, (p.pixel - d.corners[c]).norm());
+    }
+  }
+  const catar::PoseResult pose = catar::PoseFromMarkers(camera, board, found);
+  ASSERT_TRUE(pose.ok) << pose.error;
+  double metres = 0.0, degrees = 0.0;
+  PoseError(pose.worldToCamera, camera.worldToCamera, metres, degrees);
+  std::cout << "[ markers  ] " << found.size() << " of 8 found; corners within " << worst
+            << " px of their projections; pose from them: " << 1e3 * metres << " mm, " << degrees
+            << " deg off, " << pose.inlierCount << " inliers, rms " << pose.rmsPixels << " px"
+            << std::endl;
+  EXPECT_LT(worst, 2.0);
+  EXPECT_LT(metres, 0.01);
+  EXPECT_LT(degrees, 0.5);
+  EXPECT_GE(pose.inlierCount, static_cast<int>(3 * found.size()));
+}
+
+TEST(Markers, BoardFilesAndTheirErrors)
+{
+  const std::string dir = Folder("boards");
+  const std::string good = dir + "/good.yaml";
+  std::ofstream(good) << "dictionary: DICT_5X5_100\nmarkers:\n"
+                         "  - { id: 3, translate: [ 1, 2, 3 ], size: 0.1, rotate: [ 90, 0, 0 ] }\n"
+                         "  - { id: 99, translate: [ 0, 0, 0 ], size: 0.2 }\n";
+  catar::MarkerBoard board;
+  std::string error;
+  ASSERT_TRUE(catar::LoadMarkerBoard(good, board, error)) << error;
+  ASSERT_EQ(board.markers.size(), 2u);
+  // Rotated 90 degrees about x: the printed marker stands up, facing -y; its top edge above.
+  const std::array<catar::Vec3, 4> c = board.markers[0].Corners();
+  EXPECT_LT((c[0] - catar::Vec3(0.95, 2, 3.05)).norm(), 1e-12);
+  EXPECT_LT((c[2] - catar::Vec3(1.05, 2, 2.95)).norm(), 1e-12);
+  struct Case
+  {
+    std::string text, expect;
+  };
+  const Case cases[] = { { "dictionary: DICT_9X9\nmarkers: [ { id: 0, size: 1 } ]\n", "DICT_9X9" },
+    { "markers: [ { id: 50, size: 1 } ]\n", "not in DICT_4X4_50" },
+    { "markers: [ { id: 1, size: 1 }, { id: 1, size: 1 } ]\n", "twice" },
+    { "markers: [ { id: 1, size: -1 } ]\n", "size" },
+    { "markers: [ { id: 1.5, size: 1 } ]\n", "integer" },
+    { "markers: [ { id: 1, size: 1, center: [ 0, 0, 0 ] } ]\n", "center" },
+    { "markers: []\n", "markers" } };
+  for (const Case& k : cases)
+  {
+    std::ofstream(dir + "/bad.yaml") << k.text;
+    EXPECT_FALSE(catar::LoadMarkerBoard(dir + "/bad.yaml", board, error)) << k.text;
+    EXPECT_NE(error.find(k.expect), std::string::npos) << k.text << ": " << error;
+  }
+  std::vector<std::uint8_t> grey;
+  ASSERT_TRUE(catar::MarkerImage("DICT_4X4_50", 7, 80, 1, grey, error)) << error;
+  EXPECT_EQ(grey.size(), 80u * 80u);
+  EXPECT_EQ(grey[0], 255);          // the white margin
+  EXPECT_EQ(grey[80 * 12 + 12], 0); // the black border
+  EXPECT_FALSE(catar::MarkerImage("DICT_4X4_50", 50, 80, 1, grey, error));
+  EXPECT_FALSE(catar::MarkerImage("DICT_4X4_50", 7, 4, 1, grey, error));
+}
