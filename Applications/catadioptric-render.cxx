@@ -1,7 +1,7 @@
 // catadioptric-render: renders a scene file (or the built-in demo) to a PNG, or a sequence to
 // numbered PNGs or a video, and prints the time of each stage.
 //
-//   catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--repeat N]
+//   catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--markers BOARD] [--repeat N]
 //                       [--target-area A | --pixel-tolerance P] [--print-demo-scene]
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricParallel.h"
@@ -27,8 +27,9 @@ namespace
 void Usage(FILE* out)
 {
   std::fprintf(out,
-    "usage: catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--repeat N]\n"
-    "                           [--target-area A | --pixel-tolerance P] [--print-demo-scene]\n"
+    "usage: catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--markers BOARD]\n"
+    "                           [--repeat N] [--target-area A | --pixel-tolerance P]\n"
+    "                           [--print-demo-scene]\n"
     "\n"
     "Renders SCENE (YAML or JSON, see README \"Scene files\") to OUT (default\n"
     "catadioptric-render.png) and prints the time of each stage. Without SCENE it renders the\n"
@@ -39,7 +40,8 @@ void Usage(FILE* out)
     "or .avi writes a video; OUT a plain image name writes the first frame of the range.\n"
     "--frames A:B renders frames A to B-1 (0-based; A: and :B leave an end open), --fps F sets\n"
     "the video's frame rate (default: the sequence's). A progress line on standard error and a\n"
-    "per-stage summary follow.\n"
+    "per-stage summary follow. --markers BOARD estimates each frame's camera pose from the\n"
+    "board's markers seen in the background (a video or image background; README \"Markers\").\n"
     "\n"
     "--repeat N renders the frame N times and reports the per-frame stages of the last one.\n"
     "--target-area A remeshes every object to triangles of about A square metres;\n"
@@ -153,7 +155,7 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
   const int stages = renderer->GetNumberOfStages();
   const int perFrame = renderer->GetFirstPerFrameStage();
   std::vector<double> sum(stages, 0.0), worst(stages, 0.0);
-  double encode = 0.0, encodeWorst = 0.0;
+  double encode = 0.0, encodeWorst = 0.0, pose = 0.0, poseWorst = 0.0;
   const bool terminal = isatty(fileno(stderr)) != 0;
   const auto start = Clock::now();
   for (long long k = first; k < end; ++k)
@@ -168,6 +170,8 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
       sum[s] += renderer->GetStageTime(s);
       worst[s] = std::max(worst[s], renderer->GetStageTime(s));
     }
+    pose += renderer->GetPoseTime();
+    poseWorst = std::max(poseWorst, renderer->GetPoseTime());
     const auto e0 = Clock::now();
     if (!writer.Write(k, TopFirst(renderer->GetOutput()), error))
     {
@@ -191,6 +195,11 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
     std::printf(
       "  %-11s %9.2f %9.2f\n", renderer->GetStageName(s), 1e3 * sum[s] / n, 1e3 * worst[s]);
   }
+  if (*renderer->GetPoseReport())
+  {
+    std::printf("  %-11s %9.2f %9.2f   (markers; %d frames without a pose)\n", "pose",
+      1e3 * pose / n, 1e3 * poseWorst, renderer->GetNumberOfPoseFailures());
+  }
   std::printf("  %-11s %9.2f %9.2f\n", "encode", 1e3 * encode / n, 1e3 * encodeWorst);
   std::printf("wrote %s\n", outName.c_str());
   return 0;
@@ -206,6 +215,7 @@ int main(int argc, char* argv[])
   double pixelTolerance = 0.0;
   long long first = 0, end = -1; // --frames (end -1: the sequence's last)
   double fps = 0.0;
+  std::string markers;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -241,6 +251,10 @@ int main(int argc, char* argv[])
           "or A\n");
         return 2;
       }
+    }
+    else if (arg == "--markers" && i + 1 < argc)
+    {
+      markers = argv[++i];
     }
     else if (arg == "--fps" && i + 1 < argc)
     {
@@ -295,6 +309,7 @@ int main(int argc, char* argv[])
   renderer->SetSceneFileName(scene.empty() ? nullptr : scene.c_str());
   renderer->SetRemeshTargetArea(targetArea);
   renderer->SetRemeshPixelTolerance(pixelTolerance);
+  renderer->SetMarkerBoardFileName(markers.empty() ? nullptr : markers.c_str());
   if (!renderer->LoadScene())
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
@@ -362,6 +377,11 @@ int main(int argc, char* argv[])
   std::printf("image: %d x %d, %lld triangles, SMP backend %s (%d threads)\n", cam->GetImageWidth(),
     cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
     vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
+  if (*renderer->GetPoseReport())
+  {
+    std::printf("pose from markers: %s (%.2f ms)\n", renderer->GetPoseReport(),
+      1e3 * renderer->GetPoseTime());
+  }
   if (*renderer->GetMeshReport())
   {
     std::printf("remeshed:\n%s", renderer->GetMeshReport());

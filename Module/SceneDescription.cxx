@@ -489,7 +489,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   }
   fs::CheckKeys(root,
     { "camera", "output", "solver", "cull_back_faces", "visibility", "background", "lighting",
-      "remesh", "objects", "trajectory", "sequence" });
+      "remesh", "objects", "trajectory", "sequence", "markers" });
   const fs::Node cam = root["camera"];
   if (cam.isString())
   {
@@ -647,6 +647,25 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     {
       throw fs::ParseError("trajectory: " + error);
     }
+  }
+  const fs::Node markers = root["markers"];
+  if (!markers.empty() && !markers.isNone())
+  {
+    if (!markers.isString())
+    {
+      throw fs::ParseError("'markers' must name a marker board file");
+    }
+    if (!scene.trajectoryFile.empty())
+    {
+      throw fs::ParseError(
+        "give 'trajectory' or 'markers' (the pose from the frames' markers), not both");
+    }
+    if (scene.background.type != "video" && scene.background.type != "image")
+    {
+      throw fs::ParseError("'markers' needs a background of type video or image (the frames "
+                           "the markers are found in)");
+    }
+    scene.markerBoardFile = Resolve(baseDir, markers.text());
   }
   const fs::Node sequence = root["sequence"];
   if (!sequence.empty() && !sequence.isNone())

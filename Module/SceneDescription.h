@@ -173,6 +173,11 @@ struct SceneDescription
   std::string trajectoryFile;
   Trajectory trajectory;
   SceneSequence sequence;
+  /// Key `markers` (a marker board file, Markers.h, resolved against the scene file's folder):
+  /// the camera's pose of every frame is estimated from the board's markers seen in the
+  /// background's frame (an `image` or `video` background), instead of the calibration's pose
+  /// or a trajectory.
+  std::string markerBoardFile;
 
   /// Whether anything moves or changes from frame to frame (a trajectory, keyframes, a video).
   bool IsSequence() const;

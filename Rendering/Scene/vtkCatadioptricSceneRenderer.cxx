@@ -1,6 +1,7 @@
 #include "vtkCatadioptricSceneRenderer.h"
 
 #include "FileOutput.h"
+#include "Markers.h"
 #include "SceneDescription.h"
 #include "SceneFrames.h"
 #include "VideoIO.h"
@@ -168,23 +169,69 @@ struct vtkCatadioptricSceneRenderer::Internals
     catar::Mat4 current;
   };
   std::vector<Moving> MovingObjects;
+  // Pose from markers: the board, the still background's pixels (top row first) for an image
+  // background, and the last estimation.
+  bool UseMarkers = false;
+  catar::MarkerBoard Board;
+  catar::Frame StillFrame;
+  double PoseTime = 0.0;
+  std::string PoseReport;
+  int PoseFailures = 0;
 
   bool ApplyFrame(int k);
+  void EstimatePose(const catar::Frame& frame);
 };
+
+void vtkCatadioptricSceneRenderer::Internals::EstimatePose(const catar::Frame& frame)
+{
+  const auto start = Clock::now();
+  std::vector<catar::MarkerDetection> found;
+  std::string error;
+  catar::PoseResult pose;
+  if (!catar::DetectMarkers(
+        frame.width, frame.height, frame.rgba.data(), this->Board.dictionary, true, found, error))
+  {
+    pose.error = error;
+  }
+  else
+  {
+    pose = catar::PoseFromMarkers(this->Camera->GetModel(), this->Board, found);
+  }
+  this->PoseTime = Seconds(start, Clock::now());
+  std::ostringstream report;
+  if (pose.ok)
+  {
+    report << found.size() << " markers, " << pose.inlierCount << " of " << pose.inliers.size()
+           << " corners inliers, " << pose.rmsPixels << " px rms";
+    double rowMajor[16];
+    for (int i = 0; i < 16; ++i)
+    {
+      rowMajor[i] = pose.worldToCamera(i / 4, i % 4);
+    }
+    this->Camera->SetWorldToCameraElements(rowMajor);
+  }
+  else
+  {
+    report << "no pose (" << pose.error << "): the previous one kept";
+    ++this->PoseFailures;
+  }
+  this->PoseReport = report.str();
+}
 
 bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
 {
   const double time = this->Frames.Time(k);
-  // The camera: touched only when the pose changes (its projections then run again).
+  // The camera: touched only when the pose changes (its projections then run again); with
+  // markers, below, from the frame.
   const catar::Mat4 pose = this->Frames.Pose(k);
   double current[16];
   this->Camera->GetWorldToCameraElements(current);
-  bool same = true;
+  bool same = !this->UseMarkers;
   for (int i = 0; i < 16; ++i)
   {
     same = same && current[i] == pose(i / 4, i % 4);
   }
-  if (!same)
+  if (!same && !this->UseMarkers)
   {
     double rowMajor[16];
     for (int i = 0; i < 16; ++i)
@@ -245,6 +292,14 @@ bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
         frame.rgba.data() + row * (frame.height - y), out + row * y);
     }
     image->Modified();
+    if (this->UseMarkers)
+    {
+      this->EstimatePose(frame);
+    }
+  }
+  else if (this->UseMarkers && this->CurrentFrame < 0)
+  {
+    this->EstimatePose(this->StillFrame); // an image background: once
   }
   this->CurrentFrame = k;
   return true;
@@ -258,6 +313,7 @@ vtkCatadioptricSceneRenderer::vtkCatadioptricSceneRenderer()
 vtkCatadioptricSceneRenderer::~vtkCatadioptricSceneRenderer()
 {
   this->SetSceneFileName(nullptr);
+  this->SetMarkerBoardFileName(nullptr);
 }
 
 const char* vtkCatadioptricSceneRenderer::GetDemoSceneText()
@@ -312,6 +368,39 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   {
     vtkErrorMacro(<< in.Error);
     return false;
+  }
+  // Pose from markers: the renderer's board file, else the scene's.
+  const std::string boardFile = this->MarkerBoardFileName && *this->MarkerBoardFileName
+    ? std::string(this->MarkerBoardFileName)
+    : scene.markerBoardFile;
+  in.UseMarkers = !boardFile.empty();
+  in.PoseFailures = 0;
+  in.PoseReport.clear();
+  in.PoseTime = 0.0;
+  if (in.UseMarkers)
+  {
+    if (scene.background.type != "video" && scene.background.type != "image")
+    {
+      in.Error = "markers: the pose from markers needs a background of type video or image";
+      vtkErrorMacro(<< in.Error);
+      return false;
+    }
+    if (!catar::LoadMarkerBoard(boardFile, in.Board, in.Error))
+    {
+      in.Error = "markers: " + in.Error;
+      vtkErrorMacro(<< in.Error);
+      return false;
+    }
+    if (scene.background.type == "image")
+    {
+      catar::FrameReader still;
+      if (!still.Open(scene.background.image, in.Error) || !still.Read(0, in.StillFrame, in.Error))
+      {
+        in.Error = "background: " + in.Error;
+        vtkErrorMacro(<< in.Error);
+        return false;
+      }
+    }
   }
   if (!scene.trajectory.Empty())
   {
@@ -634,6 +723,21 @@ vtkCatadioptricLighting* vtkCatadioptricSceneRenderer::GetLighting(int pipeline)
 {
   const auto& l = this->Internal->Lightings;
   return pipeline >= 0 && pipeline < static_cast<int>(l.size()) ? l[pipeline].Get() : nullptr;
+}
+
+double vtkCatadioptricSceneRenderer::GetPoseTime()
+{
+  return this->Internal->PoseTime;
+}
+
+const char* vtkCatadioptricSceneRenderer::GetPoseReport()
+{
+  return this->Internal->PoseReport.c_str();
+}
+
+int vtkCatadioptricSceneRenderer::GetNumberOfPoseFailures()
+{
+  return this->Internal->PoseFailures;
 }
 
 int vtkCatadioptricSceneRenderer::GetNumberOfFrames()

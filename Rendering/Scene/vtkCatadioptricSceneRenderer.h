@@ -95,6 +95,17 @@ public:
   /// lighting only). GetFrameRate() is the rate a video of the sequence plays at;
   /// GetSequenceNote() a sentence when video and trajectory differ in length ("" otherwise).
   int GetNumberOfFrames();
+  /// Pose from markers (README "Markers"): a marker board file whose markers, found in each
+  /// background frame, give that frame's camera pose (overrides the scene's `markers`; "" keeps
+  /// the scene's). Applied at the next LoadScene().
+  vtkSetStringMacro(MarkerBoardFileName);
+  vtkGetStringMacro(MarkerBoardFileName);
+  /// With markers: the pose estimation of the last frame (seconds), a line on it (markers found,
+  /// inliers, reprojection error, or why it failed), and the number of frames since LoadScene()
+  /// whose pose could not be estimated (they keep the previous frame's pose).
+  double GetPoseTime();
+  const char* GetPoseReport();
+  int GetNumberOfPoseFailures();
   double GetFrameTime(int frame);
   double GetFrameRate();
   const char* GetSequenceNote();
@@ -141,6 +152,7 @@ protected:
   double RemeshTargetArea = 0.0;
   double RemeshPixelTolerance = 0.0;
   bool JoinObjects = true;
+  char* MarkerBoardFileName = nullptr;
 
 private:
   vtkCatadioptricSceneRenderer(const vtkCatadioptricSceneRenderer&) = delete;

@@ -10,6 +10,7 @@
 #include "Markers.h"
 #include "Projector.h"
 #include "Trajectory.h"
+#include "VideoIO.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -192,4 +193,101 @@ TEST(Markers, BoardFilesAndTheirErrors)
   EXPECT_EQ(grey[80 * 12 + 12], 0); // the black border
   EXPECT_FALSE(catar::MarkerImage("DICT_4X4_50", 50, 80, 1, grey, error));
   EXPECT_FALSE(catar::MarkerImage("DICT_4X4_50", 7, 4, 1, grey, error));
+}
+
+// A camera moving along a 100-pose trajectory over the markers: the frames rendered with the
+// true poses, then rendered again with the pose of every frame estimated from its markers (the
+// scene's `markers`): the estimated poses track the trajectory.
+TEST(Markers, ATrajectoryReEstimatedFromRenderedMarkerFrames)
+{
+  const std::string dir = Folder("sequence");
+  const catar::MarkerBoard board = Board();
+  {
+    std::ofstream b(dir + "/board.yaml");
+    b << "dictionary: " << board.dictionary << "\nmarkers:\n";
+    for (const catar::BoardMarker& m : board.markers)
+    {
+      b << "  - { id: " << m.id << ", size: " << m.size << ", translate: [ " << m.translate.x()
+        << ", " << m.translate.y() << ", " << m.translate.z() << " ], rotate: [ 0, 0, "
+        << m.rotate.z() << " ] }\n";
+    }
+  }
+  // The demo camera sliding 20 cm sideways, rising 5 cm and turning 10 degrees about world z.
+  const int n = 100;
+  catar::Trajectory truth;
+  const catar::Mat3 base = (catar::Mat3() << 1, 0, 0, 0, 0, 1, 0, -1, 0).finished();
+  for (int k = 0; k < n; ++k)
+  {
+    const double s = k / double(n - 1);
+    catar::Mat4 cameraToWorld = catar::Mat4::Identity();
+    cameraToWorld.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd((-5.0 + 10.0 * s) * kPi / 180.0, catar::Vec3::UnitZ()).toRotationMatrix() *
+      base;
+    cameraToWorld.topRightCorner<3, 1>() = catar::Vec3(-0.1 + 0.2 * s, -0.14, 1.0 + 0.05 * s);
+    truth.poses.push_back({ k / 30.0, cameraToWorld.inverse() });
+  }
+  std::string error;
+  ASSERT_TRUE(catar::SaveTrajectory(dir + "/poses.tum", truth, "tum", error)) << error;
+  std::string scene = Scene(board, "trajectory: poses.tum\n");
+  const std::string room = "background: { type: environment, samples: 2 }";
+  scene.replace(
+    scene.find(room), room.size(), "background: { type: color, color: [ 0.45, 0.4, 0.35 ] }");
+  std::ofstream(dir + "/render.yaml") << scene;
+  {
+    vtkNew<vtkCatadioptricSceneRenderer> r;
+    r->SetSceneFileName((dir + "/render.yaml").c_str());
+    ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+    ASSERT_EQ(r->GetNumberOfFrames(), n);
+    catar::FrameWriter frames;
+    ASSERT_TRUE(frames.Open(dir + "/frame_%03d.png", 1328, 1048, 0.0, error)) << error;
+    for (int k = 0; k < n; ++k)
+    {
+      ASSERT_TRUE(r->RenderFrame(k)) << r->GetLastError();
+      catar::Frame f;
+      f.rgba = TopFirst(r->GetOutput(), f.width, f.height);
+      ASSERT_TRUE(frames.Write(k, f, error)) << error;
+    }
+  }
+  // The same frames as the background, the pose from their markers, a sphere anchored on the
+  // floor.
+  std::ofstream(dir + "/estimate.yaml") << R"(camera:
+  image_width: 1328
+  image_height: 1048
+  camera_matrix: [ 1000.0, 0.0, 663.5, 0.0, 1000.0, 523.5, 0.0, 0.0, 1.0 ]
+  mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
+background: { type: video, file: frame_%03d.png, fps: 30 }
+markers: board.yaml
+objects:
+  - { type: sphere, radius: 0.08, translate: [ 0.0, -0.5, 0.08 ], color: [ 0.9, 0.6, 0.2 ] }
+)";
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName((dir + "/estimate.yaml").c_str());
+  ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+  ASSERT_EQ(r->GetNumberOfFrames(), n);
+  double worstMetres = 0.0, worstDegrees = 0.0, meanMetres = 0.0, poseTime = 0.0;
+  for (int k = 0; k < n; ++k)
+  {
+    ASSERT_TRUE(r->RenderFrame(k)) << r->GetLastError();
+    double m[16];
+    r->GetCamera()->GetWorldToCameraElements(m);
+    catar::Mat4 estimated;
+    for (int i = 0; i < 16; ++i)
+    {
+      estimated(i / 4, i % 4) = m[i];
+    }
+    double metres = 0.0, degrees = 0.0;
+    PoseError(estimated, truth.poses[k].worldToCamera, metres, degrees);
+    worstMetres = std::max(worstMetres, metres);
+    worstDegrees = std::max(worstDegrees, degrees);
+    meanMetres += metres / n;
+    poseTime += r->GetPoseTime() / n;
+  }
+  std::cout << "[ markers  ] " << n << " frames re-estimated from their markers: position "
+            << 1e3 * meanMetres << " mm mean, " << 1e3 * worstMetres << " mm worst; rotation "
+            << worstDegrees << " deg worst; " << r->GetNumberOfPoseFailures()
+            << " frames without a pose; " << 1e3 * poseTime << " ms a frame (detection and pose)"
+            << std::endl;
+  EXPECT_EQ(r->GetNumberOfPoseFailures(), 0);
+  EXPECT_LT(worstMetres, 0.01);
+  EXPECT_LT(worstDegrees, 0.5);
 }
