@@ -236,6 +236,58 @@ class PipelineTest(unittest.TestCase):
         self.assertEqual(cam.GetDistortion(), (0.0,) * 5)
 
 
+    def test_pose_from_pixels_of_known_points(self):
+        """vtkCatadioptricPoseEstimator: pixels of known world points (the camera's own
+        projection, some replaced by wrong pixels) give back the camera's pose and reject the
+        wrong ones."""
+        from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+        import random
+        cam = demo_camera()
+        rng = random.Random(3)
+        world, pixels = vtkPoints(), vtkDoubleArray()
+        pixels.SetNumberOfComponents(2)
+        truth = []
+        while world.GetNumberOfPoints() < 30:
+            p = [rng.uniform(-0.5, 0.5), rng.uniform(-1.0, -0.3), rng.uniform(0.6, 1.4)]
+            px, mp = [0.0, 0.0], [0.0, 0.0, 0.0]
+            if cam.ProjectWorldPoint(p, px, mp) != 0:
+                continue
+            outlier = world.GetNumberOfPoints() % 5 == 0
+            if outlier:
+                px = [px[0] + rng.choice([-1, 1]) * rng.uniform(20, 60), px[1]]
+            truth.append(not outlier)
+            world.InsertNextPoint(p)
+            pixels.InsertNextTuple2(*px)
+        estimator = car.vtkCatadioptricPoseEstimator()
+        other = demo_camera()
+        other.SetWorldToCameraElements([1, 0, 0, 0.2, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
+        estimator.SetCamera(other)  # its pose is not used
+        estimator.SetObservations(world, pixels)
+        self.assertTrue(estimator.Estimate(), estimator.GetLastError())
+        expected = [0.0] * 16
+        cam.GetWorldToCameraElements(expected)
+        m = estimator.GetWorldToCamera()
+        for i in range(16):
+            self.assertAlmostEqual(m.GetElement(i // 4, i % 4), expected[i], places=6)
+        inliers = [bool(estimator.GetInliers().GetValue(i)) for i in range(len(truth))]
+        self.assertEqual(inliers, truth)
+        self.assertEqual(estimator.GetNumberOfInliers(), sum(truth))
+        self.assertLess(estimator.GetRMSError(), 1e-4)
+        # Too few points: a sentence, no crash.
+        few = vtkPoints()
+        few.SetNumberOfPoints(3)
+        three = vtkDoubleArray()
+        three.SetNumberOfComponents(2)
+        three.SetNumberOfTuples(3)
+        estimator.SetObservations(few, three)
+        estimator.GlobalWarningDisplayOff()
+        self.assertFalse(estimator.Estimate())
+        self.assertIn("4", estimator.GetLastError())
+        estimator.SetObservations(world, three)
+        self.assertFalse(estimator.Estimate())
+        self.assertIn("pixels", estimator.GetLastError())
+        estimator.GlobalWarningDisplayOn()
+
     def test_enable_threads(self):
         from vtkmodules.vtkCommonCore import vtkSMPTools
         car.enable_threads(2)
