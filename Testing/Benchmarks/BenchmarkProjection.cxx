@@ -3,6 +3,7 @@
 //   build/bin/BenchmarkProjection [--benchmark_out=projection.csv --benchmark_out_format=csv]
 // The counter ns_per_item is the cost of one point / pixel / triangle.
 #include "../Cxx/TestCameras.h"
+#include "PoseEstimation.h"
 #include "Projector.h"
 #include "Rasterizer.h"
 #include "SceneDescription.h"
@@ -258,6 +259,47 @@ void BM_RasterizeTriangle(benchmark::State& state)
   SetPerItem(state, tris.size() / 3);
 }
 BENCHMARK(BM_RasterizeTriangle)->Arg(2)->Arg(20)->Arg(200);
+// The pose from 50 pixels of world points about a metre away (PoseEstimation.h: RANSAC, then the
+// refinement), with 0.5 px noise; range(0) percent of them outliers; range(1): 0 the sphere, 1 the
+// tilted hyperboloid. The time of one estimate (a frame's).
+void BM_PoseEstimation(benchmark::State& state)
+{
+  const bool hyperboloid = state.range(1) == 1;
+  const CameraModel model =
+    hyperboloid ? catar_test::TiltedHyperboloidCameraModel() : DemoScene().camera;
+  state.SetLabel(std::string(hyperboloid ? "tilted hyperboloid" : "sphere") + ", 50 points, " +
+    std::to_string(state.range(0)) + " % outliers");
+  const Projector proj(model);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<PoseObservation> observations;
+  for (const Vec3& p : ScenePoints(model, 50))
+  {
+    Vec2 pixel = proj.ProjectWorld(p).pixel + Vec2(noise(rng), noise(rng));
+    if (observations.size() * 100 < static_cast<std::size_t>(state.range(0)) * 50)
+    {
+      pixel += Vec2(40.0 * u(rng) + 30.0, 40.0 * u(rng)); // an outlier
+    }
+    observations.push_back({ pixel, p });
+  }
+  for (auto _ : state)
+  {
+    const PoseResult r = EstimatePose(model, observations);
+    if (!r.ok)
+    {
+      state.SkipWithError(r.error.c_str());
+      break;
+    }
+    benchmark::DoNotOptimize(r.worldToCamera.data());
+  }
+  SetPerItem(state, 1);
+}
+BENCHMARK(BM_PoseEstimation)
+  ->Args({ 0, 0 })
+  ->Args({ 30, 0 })
+  ->Args({ 30, 1 })
+  ->Unit(benchmark::kMillisecond);
 } // namespace
 
 BENCHMARK_MAIN();
