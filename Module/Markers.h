@@ -67,8 +67,8 @@ struct MarkerDetection
 
 /// The markers of `dictionary` in an RGBA8 frame (top row first). mirrored: look in the
 /// left-right flipped frame (markers seen in a convex mirror), corners mapped back. Corners
-/// from lines fitted to each marker's contour. False with a sentence for an unknown dictionary or an empty frame; no markers is
-/// not an error.
+/// from lines fitted to each marker's contour. False with a sentence for an unknown dictionary or
+/// an empty frame; no markers is not an error.
 bool DetectMarkers(int width, int height, const std::uint8_t* rgba, const std::string& dictionary,
   bool mirrored, std::vector<MarkerDetection>& detections, std::string& error);
 
