@@ -12,7 +12,9 @@
 // and fails its test. The last input is kept in fuzz-last-input.* in the working folder, so that a
 // crash can be replayed.
 #include "CalibrationIO.h"
+#include "Markers.h"
 #include "SceneDescription.h"
+#include "Trajectory.h"
 
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
@@ -153,7 +155,22 @@ public:
       catar::CameraModel model;
       const bool sceneOk = catar::ParseScene(data, this->Work, scene, error);
       const bool calibrationOk = catar::ParseCalibration(data, model, error);
-      return sceneOk || calibrationOk;
+      catar::MarkerBoard board;
+      const bool boardOk = catar::LoadMarkerBoard(file, board, error);
+      return sceneOk || calibrationOk || boardOk;
+    }
+    if (seed.extension == ".tum")
+    {
+      // A trajectory file: read, and every pose interpolated.
+      catar::Trajectory trajectory;
+      std::string error;
+      if (!catar::ParseTrajectory(data, "fuzz", trajectory, error))
+      {
+        return false;
+      }
+      const catar::Mat4 m = trajectory.PoseAt(0.5 * (trajectory.poses.front().time +
+        trajectory.poses.back().time));
+      return m.allFinite();
     }
     // A mesh file: read and checked as a scene's mesh object, then projected, sorted and drawn.
     try
@@ -224,7 +241,7 @@ int main(int argc, char* argv[])
     for (const auto& entry : std::filesystem::directory_iterator(folder))
     {
       const std::string ext = entry.path().extension().string();
-      static const char* const kTypes[] = { ".yaml", ".yml", ".json", ".obj", ".ply", ".stl",
+      static const char* const kTypes[] = { ".yaml", ".yml", ".json", ".tum", ".obj", ".ply", ".stl",
         ".vtk", ".vtp" };
       if (entry.is_regular_file() &&
         std::find(std::begin(kTypes), std::end(kTypes), ext) != std::end(kTypes))
