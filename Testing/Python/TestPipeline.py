@@ -175,6 +175,37 @@ class PipelineTest(unittest.TestCase):
             self.assertTrue(renderer.WritePNG(png))
             self.assertGreater(os.path.getsize(png), 1000)
 
+    def test_scene_sequence_frames(self):
+        """A scene with a trajectory (Data/scenes/moving-camera.yaml): its frames, their times,
+        and the camera at pose k after RenderFrame(k)."""
+        source = os.environ.get("CATAR_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+        scene = os.path.join(source, "Data", "scenes", "moving-camera.yaml")
+        text = open(scene).read().replace("samples: 2", "samples: 1")
+        text = text.replace("output: { width: 664, height: 524 }", "output: { width: 166, height: 131 }")
+        text = text.replace("trajectory: moving-camera.tum",
+                            "trajectory: " + os.path.join(source, "Data", "scenes", "moving-camera.tum"))
+        renderer = car.vtkCatadioptricSceneRenderer()
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "scene.yaml")
+            with open(path, "w") as f:
+                f.write(text)
+            renderer.SetSceneFileName(path)
+            self.assertTrue(renderer.LoadScene(), renderer.GetLastError())
+            self.assertEqual(renderer.GetNumberOfFrames(), 60)
+            self.assertAlmostEqual(renderer.GetFrameRate(), 30.0, places=3)
+            centres = []
+            for k in (0, 59):
+                self.assertTrue(renderer.RenderFrame(k), renderer.GetLastError())
+                self.assertAlmostEqual(renderer.GetFrameTime(k), k / 30.0, places=5)
+                centre = [0.0, 0.0, 0.0]
+                renderer.GetCamera().GetCameraPosition(centre)
+                centres.append(centre)
+            # The trajectory slides the camera 16 cm along x and 5 cm up.
+            self.assertAlmostEqual(centres[0][0], -0.08, places=5)
+            self.assertAlmostEqual(centres[1][0], 0.08, places=5)
+            self.assertAlmostEqual(centres[1][2] - centres[0][2], 0.05, places=5)
+            self.assertFalse(renderer.RenderFrame(60))
+
     def test_bad_scene_reports_an_error(self):
         renderer = car.vtkCatadioptricSceneRenderer()
         with tempfile.TemporaryDirectory() as d:
