@@ -4,6 +4,7 @@
 //   catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--markers BOARD] [--repeat N]
 //                       [--target-area A | --pixel-tolerance P] [--print-demo-scene]
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkImageData.h"
@@ -81,24 +82,6 @@ bool ParseRange(const std::string& text, long long& first, long long& end)
   return number(text.substr(0, colon), first) && number(text.substr(colon + 1), end);
 }
 
-// The rendered frame (VTK's rows, bottom first) as RGBA, the top row first.
-catar::Frame TopFirst(vtkImageData* image)
-{
-  catar::Frame f;
-  int dims[3];
-  image->GetDimensions(dims);
-  f.width = dims[0];
-  f.height = dims[1];
-  f.rgba.resize(static_cast<std::size_t>(f.width) * f.height * 4);
-  const auto* in = static_cast<const unsigned char*>(image->GetScalarPointer());
-  const std::size_t row = static_cast<std::size_t>(f.width) * 4;
-  for (int y = 0; y < f.height; ++y)
-  {
-    std::copy(in + row * (f.height - 1 - y), in + row * (f.height - y), f.rgba.data() + row * y);
-  }
-  return f;
-}
-
 // "1:05" (minutes and seconds) or "1:02:05".
 std::string HoursMinutes(double seconds)
 {
@@ -173,7 +156,7 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
     pose += renderer->GetPoseTime();
     poseWorst = std::max(poseWorst, renderer->GetPoseTime());
     const auto e0 = Clock::now();
-    if (!writer.Write(k, TopFirst(renderer->GetOutput()), error))
+    if (!writer.Write(k, vtkCatadioptricImageSupport::ToFrame(renderer->GetOutput()), error))
     {
       std::fprintf(stderr, "\ncatadioptric-render: %s\n", error.c_str());
       return 1;

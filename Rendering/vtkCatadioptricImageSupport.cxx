@@ -302,3 +302,40 @@ unsigned char* vtkCatadioptricImageSupport::AllocateRGBA(
   scalars->SetName(vtkCatadioptricArrayNames::RGBA);
   return scalars->GetPointer(0);
 }
+
+catar::Frame vtkCatadioptricImageSupport::ToFrame(vtkImageData* image)
+{
+  catar::Frame f;
+  int dims[3] = { 0, 0, 0 };
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars || scalars->GetNumberOfComponents() != 4 ||
+    scalars->GetDataType() != VTK_UNSIGNED_CHAR || dims[0] <= 0 || dims[1] <= 0)
+  {
+    return f;
+  }
+  f.width = dims[0];
+  f.height = dims[1];
+  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+  const std::size_t row = static_cast<std::size_t>(f.width) * 4;
+  f.rgba.resize(row * f.height);
+  for (int y = 0; y < f.height; ++y)
+  {
+    std::copy(p + row * (f.height - 1 - y), p + row * (f.height - y), f.rgba.data() + row * y);
+  }
+  return f;
+}
+
+void vtkCatadioptricImageSupport::FromFrame(const catar::Frame& frame, vtkImageData* image)
+{
+  image->SetDimensions(frame.width, frame.height, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  auto* out = static_cast<unsigned char*>(image->GetScalarPointer());
+  const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
+  for (int y = 0; y < frame.height; ++y)
+  {
+    std::copy(frame.rgba.data() + row * (frame.height - 1 - y),
+      frame.rgba.data() + row * (frame.height - y), out + row * y);
+  }
+  image->Modified();
+}

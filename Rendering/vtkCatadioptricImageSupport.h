@@ -11,6 +11,7 @@
 
 #include "CatadioptricARRenderingModule.h" // for export macro
 #include "Rasterizer.h"                    // for catar::TextureView
+#include "VideoIO.h"                       // for catar::Frame
 #include "vtkType.h"                       // for vtkIdType
 
 #include <initializer_list> // for std::initializer_list
@@ -64,6 +65,11 @@ public:
   /// through a decoder that reports errors, not VTK's readers, some of which crash on them.
   /// Images over catar::kMaxImagePixels (CameraModel.h) are refused too.
   static vtkSmartPointer<vtkImageData> ReadImageFile(const std::string& path, std::string& error);
+
+  /// An RGBA image (VTK's rows, the bottom one first) as a catar::Frame (the top row first, as
+  /// files and OpenCV have them), and back (the image resized to the frame, 4 components).
+  static catar::Frame ToFrame(vtkImageData* image);
+  static void FromFrame(const catar::Frame& frame, vtkImageData* image);
 
   /// The texture a mesh names in its field data array TextureIndex (one integer; negative:
   /// untextured), 0 without the array. False with a sentence in `error` when the array is empty

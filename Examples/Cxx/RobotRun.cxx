@@ -12,6 +12,7 @@
 // DIR/board.yaml (the markers), DIR/augmented.yaml (the scene of the second pass),
 // DIR/robot-run.mp4 and DIR/strip.png (four frames side by side).
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkImageData.h"
@@ -118,23 +119,6 @@ void WriteText(const std::string& path, const std::string& text)
   std::ofstream(path) << text;
 }
 
-catar::Frame TopFirst(vtkImageData* image)
-{
-  catar::Frame f;
-  int dims[3];
-  image->GetDimensions(dims);
-  f.width = dims[0];
-  f.height = dims[1];
-  const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
-  const std::size_t row = static_cast<std::size_t>(f.width) * 4;
-  f.rgba.resize(row * f.height);
-  for (int y = 0; y < f.height; ++y)
-  {
-    std::copy(p + row * (f.height - 1 - y), p + row * (f.height - y), f.rgba.data() + row * y);
-  }
-  return f;
-}
-
 double Seconds(std::chrono::steady_clock::time_point a)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
@@ -220,7 +204,8 @@ int main(int argc, char* argv[])
     }
     for (int k = 0; k < frames; ++k)
     {
-      if (!r->RenderFrame(k) || !writer.Write(k, TopFirst(r->GetOutput()), error))
+      if (!r->RenderFrame(k) ||
+        !writer.Write(k, vtkCatadioptricImageSupport::ToFrame(r->GetOutput()), error))
       {
         return Fail(error.empty() ? r->GetLastError() : error);
       }
@@ -255,7 +240,7 @@ int main(int argc, char* argv[])
     {
       return Fail(r->GetLastError());
     }
-    const catar::Frame frame = TopFirst(r->GetOutput());
+    const catar::Frame frame = vtkCatadioptricImageSupport::ToFrame(r->GetOutput());
     if (!video.Write(k, frame, error))
     {
       return Fail(error);

@@ -281,17 +281,7 @@ bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
       this->Error = "background: " + this->Error;
       return false;
     }
-    vtkImageData* image = this->VideoImage;
-    image->SetDimensions(frame.width, frame.height, 1);
-    image->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
-    auto* out = static_cast<unsigned char*>(image->GetScalarPointer());
-    const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
-    for (int y = 0; y < frame.height; ++y)
-    {
-      std::copy(frame.rgba.data() + row * (frame.height - 1 - y),
-        frame.rgba.data() + row * (frame.height - y), out + row * y);
-    }
-    image->Modified();
+    vtkCatadioptricImageSupport::FromFrame(frame, this->VideoImage);
     if (this->UseMarkers)
     {
       this->EstimatePose(frame);

@@ -3,6 +3,7 @@
 // and the pose from them is the camera's true pose (the scene's); a sequence re-estimated from
 // rendered marker frames tracks its trajectory.
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricSceneRenderer.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -76,23 +77,27 @@ objects:
   return s.str();
 }
 
-// The frame, top row first.
-std::vector<std::uint8_t> TopFirst(vtkImageData* image, int& w, int& h)
+// Renders the scene of the board's markers (written to path) and finds them in the frame
+// (mirrored or not); the camera it was rendered with.
+bool RenderAndDetect(const std::string& path, const catar::MarkerBoard& board, bool mirrored,
+  std::vector<catar::MarkerDetection>& found, catar::CameraModel& camera)
 {
-  int dims[3];
-  image->GetDimensions(dims);
-  w = dims[0];
-  h = dims[1];
-  const auto* p = static_cast<const std::uint8_t*>(image->GetScalarPointer());
-  std::vector<std::uint8_t> out(static_cast<std::size_t>(w) * h * 4);
-  const std::size_t row = static_cast<std::size_t>(w) * 4;
-  for (int y = 0; y < h; ++y)
+  std::ofstream(path) << Scene(board, "");
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName(path.c_str());
+  if (!r->Render())
   {
-    std::copy(p + row * (h - 1 - y), p + row * (h - y), out.data() + row * y);
+    ADD_FAILURE() << r->GetLastError();
+    return false;
   }
-  return out;
+  camera = r->GetCamera()->GetModel();
+  const catar::Frame frame = vtkCatadioptricImageSupport::ToFrame(r->GetOutput());
+  std::string error;
+  const bool ok = catar::DetectMarkers(
+    frame.width, frame.height, frame.rgba.data(), board.dictionary, mirrored, found, error);
+  EXPECT_TRUE(ok) << error;
+  return ok;
 }
-
 void PoseError(
   const catar::Mat4& estimated, const catar::Mat4& truth, double& metres, double& degrees)
 {
@@ -108,24 +113,14 @@ TEST(Markers, FoundThroughTheMirrorWhereTheyProjectAndGiveThePose)
 {
   const std::string dir = Folder("still");
   const catar::MarkerBoard board = Board();
-  const std::string path = dir + "/scene.yaml";
-  std::ofstream(path) << Scene(board, "");
-  vtkNew<vtkCatadioptricSceneRenderer> r;
-  r->SetSceneFileName(path.c_str());
-  ASSERT_TRUE(r->Render()) << r->GetLastError();
-  int w = 0, h = 0;
-  const std::vector<std::uint8_t> frame = TopFirst(r->GetOutput(), w, h);
-  std::vector<catar::MarkerDetection> found;
-  std::string error;
-  ASSERT_TRUE(catar::DetectMarkers(w, h, frame.data(), board.dictionary, true, found, error))
-    << error;
+  std::vector<catar::MarkerDetection> found, unflipped;
+  catar::CameraModel camera;
+  ASSERT_TRUE(RenderAndDetect(dir + "/scene.yaml", board, true, found, camera));
   // Not mirrored, the reflections do not decode.
-  std::vector<catar::MarkerDetection> unflipped;
-  ASSERT_TRUE(catar::DetectMarkers(w, h, frame.data(), board.dictionary, false, unflipped, error));
+  ASSERT_TRUE(RenderAndDetect(dir + "/scene.yaml", board, false, unflipped, camera));
   EXPECT_TRUE(unflipped.empty());
   ASSERT_GE(found.size(), 6u) << "of 8";
   // Each corner where the exact projection of the board's corner falls.
-  const catar::CameraModel camera = r->GetCamera()->GetModel();
   const catar::Projector projector(camera);
   double worst = 0.0;
   for (const catar::MarkerDetection& d : found)
@@ -243,9 +238,8 @@ TEST(Markers, ATrajectoryReEstimatedFromRenderedMarkerFrames)
     for (int k = 0; k < n; ++k)
     {
       ASSERT_TRUE(r->RenderFrame(k)) << r->GetLastError();
-      catar::Frame f;
-      f.rgba = TopFirst(r->GetOutput(), f.width, f.height);
-      ASSERT_TRUE(frames.Write(k, f, error)) << error;
+      ASSERT_TRUE(frames.Write(k, vtkCatadioptricImageSupport::ToFrame(r->GetOutput()), error))
+        << error;
     }
   }
   // The same frames as the background, the pose from their markers, a sphere anchored on the
@@ -311,17 +305,10 @@ TEST(Markers, TheSmallestMarkerFoundThroughTheMirror)
       m.translate = catar::Vec3(0.1, y, 0.002);
       m.size = side;
       board.markers = { m };
-      const std::string path = dir + "/scene.yaml";
-      std::ofstream(path) << Scene(board, "");
-      vtkNew<vtkCatadioptricSceneRenderer> r;
-      r->SetSceneFileName(path.c_str());
-      ASSERT_TRUE(r->Render()) << r->GetLastError();
-      int w = 0, h = 0;
-      const std::vector<std::uint8_t> frame = TopFirst(r->GetOutput(), w, h);
       std::vector<catar::MarkerDetection> found;
-      std::string error;
-      ASSERT_TRUE(catar::DetectMarkers(w, h, frame.data(), board.dictionary, true, found, error));
-      const catar::Projector projector(r->GetCamera()->GetModel());
+      catar::CameraModel camera;
+      ASSERT_TRUE(RenderAndDetect(dir + "/scene.yaml", board, true, found, camera));
+      const catar::Projector projector(camera);
       const std::array<catar::Vec3, 4> corners = m.Corners();
       double longest = 0.0, shortest = 1e9;
       for (int c = 0; c < 4; ++c)

@@ -168,8 +168,8 @@ public:
       {
         return false;
       }
-      const catar::Mat4 m = trajectory.PoseAt(0.5 * (trajectory.poses.front().time +
-        trajectory.poses.back().time));
+      const catar::Mat4 m =
+        trajectory.PoseAt(0.5 * (trajectory.poses.front().time + trajectory.poses.back().time));
       return m.allFinite();
     }
     // A mesh file: read and checked as a scene's mesh object, then projected, sorted and drawn.
@@ -241,8 +241,8 @@ int main(int argc, char* argv[])
     for (const auto& entry : std::filesystem::directory_iterator(folder))
     {
       const std::string ext = entry.path().extension().string();
-      static const char* const kTypes[] = { ".yaml", ".yml", ".json", ".tum", ".obj", ".ply", ".stl",
-        ".vtk", ".vtp" };
+      static const char* const kTypes[] = { ".yaml", ".yml", ".json", ".tum", ".obj", ".ply",
+        ".stl", ".vtk", ".vtp" };
       if (entry.is_regular_file() &&
         std::find(std::begin(kTypes), std::end(kTypes), ext) != std::end(kTypes))
       {

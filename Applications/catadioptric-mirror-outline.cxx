@@ -1,0 +1,192 @@
+// catadioptric-mirror-outline: a spherical mirror's centre (camera frame) from its outline in a
+// camera frame (Module/MirrorOutline.h).
+//
+//   catadioptric-mirror-outline CALIBRATION IMAGE --radius R [-o OUT.yaml] [--overlay OUT.png]
+//
+// The calibration gives the camera's intrinsics and distortion (its mirror is replaced by the
+// sphere found). Exit status: 0 success, 1 bad input or no outline, 2 usage error.
+#include "CalibrationIO.h"
+#include "MirrorOutline.h"
+
+#include <CLI/CLI.hpp>
+
+#include <opencv2/core.hpp>
+#include <opencv2/core/utils/logger.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* const kProgram = "catadioptric-mirror-outline";
+
+int Error(const std::string& message, int code = 1)
+{
+  std::fprintf(stderr, "%s: %s\n", kProgram, message.c_str());
+  return code;
+}
+
+// The image with the outline of the sphere found (red, anti-aliased) and the detected outline
+// points (green pixels) over it.
+bool WriteOverlay(const std::string& path, const cv::Mat& bgr, const catar::CameraModel& camera,
+  const std::vector<catar::Vec2>& points, const catar::Vec3& centre, double radius,
+  std::string& error)
+{
+  cv::Mat drawn = bgr.clone();
+  constexpr int kShift = 4; // sub-pixel drawing: coordinates in 1/16 pixel
+  const auto at = [](const catar::Vec2& p) {
+    // Pixel centres are integers in the image convention and in OpenCV's drawing.
+    return cv::Point(static_cast<int>(std::lround(p.x() * (1 << kShift))),
+      static_cast<int>(std::lround(p.y() * (1 << kShift))));
+  };
+  std::vector<cv::Point> curve;
+  for (const catar::Vec2& p : catar::SphereOutline(camera, centre, radius, 720))
+  {
+    if (p.allFinite() && std::abs(p.x()) < 1e6 && std::abs(p.y()) < 1e6)
+    {
+      curve.push_back(at(p));
+    }
+  }
+  if (!curve.empty())
+  {
+    cv::polylines(drawn, curve, true, cv::Scalar(0, 0, 255), 1, cv::LINE_AA, kShift);
+  }
+  // Each point as the pixel it lies in, over the curve.
+  for (const catar::Vec2& p : points)
+  {
+    const int x = static_cast<int>(std::lround(p.x())), y = static_cast<int>(std::lround(p.y()));
+    if (x >= 0 && y >= 0 && x < drawn.cols && y < drawn.rows)
+    {
+      drawn.at<cv::Vec3b>(y, x) = cv::Vec3b(0, 255, 0);
+    }
+  }
+  try
+  {
+    if (cv::imwrite(path, drawn))
+    {
+      return true;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "cannot write '" + path + "': " + e.what();
+    return false;
+  }
+  error = "cannot write '" + path + "'";
+  return false;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  CLI::App app("Finds a spherical mirror's centre (camera frame) from its outline in a camera "
+               "frame: detects the outline, fits the sphere of the given radius and prints its "
+               "centre, the number of outline points used and their RMS distance (pixels) from "
+               "the outline of the sphere found. The calibration gives the camera's intrinsics "
+               "and distortion; its mirror is replaced. Exit status: 0 success, 1 bad input or no "
+               "outline, 2 usage error.",
+    kProgram);
+  std::string calibration, imagePath, output, overlay;
+  double radius = 0.0;
+  app.add_option("CALIBRATION", calibration, "calibration file (YAML or JSON)")->required();
+  app.add_option("IMAGE", imagePath, "camera frame that shows the whole mirror")->required();
+  app.add_option("--radius", radius, "the sphere's radius, in the calibration's length unit")
+    ->required();
+  app.add_option(
+    "-o,--output", output, "write the calibration with the mirror {type: sphere, center, radius}");
+  app.add_option("--overlay", overlay,
+    "write the image with the detected outline points (green) and the sphere's outline (red)");
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::CallForHelp&)
+  {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return Error(std::string(e.what()) + " (run with --help for usage)", 2);
+  }
+
+  if (!(radius > 0.0) || !std::isfinite(radius))
+  {
+    return Error("--radius must be a positive number (got " + std::to_string(radius) +
+        "; run with --help for usage)",
+      2);
+  }
+
+  catar::CameraModel camera;
+  std::string error;
+  if (!catar::LoadCalibration(calibration, camera, error))
+  {
+    return Error(error);
+  }
+  if (!std::ifstream(imagePath))
+  {
+    return Error("cannot open the image '" + imagePath + "'");
+  }
+  // Failures are reported here, in one sentence, not by OpenCV's log.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  cv::Mat bgr;
+  try
+  {
+    bgr = cv::imread(imagePath, cv::IMREAD_COLOR);
+  }
+  catch (const cv::Exception& e)
+  {
+    return Error("cannot read the image '" + imagePath + "': " + e.what());
+  }
+  if (bgr.empty())
+  {
+    return Error("cannot read the image '" + imagePath + "' (missing, or not an image)");
+  }
+  if (bgr.cols != camera.intrinsics.width || bgr.rows != camera.intrinsics.height)
+  {
+    return Error("the image '" + imagePath + "' is " + std::to_string(bgr.cols) + " x " +
+      std::to_string(bgr.rows) + " pixels but the calibration is for " +
+      std::to_string(camera.intrinsics.width) + " x " + std::to_string(camera.intrinsics.height));
+  }
+  cv::Mat rgba;
+  cv::cvtColor(bgr, rgba, cv::COLOR_BGR2RGBA);
+  if (!rgba.isContinuous())
+  {
+    rgba = rgba.clone();
+  }
+
+  std::vector<catar::Vec2> points;
+  if (!catar::DetectMirrorOutline(
+        camera, rgba.cols, rgba.rows, rgba.ptr<std::uint8_t>(0), points, error))
+  {
+    return Error(imagePath + ": " + error);
+  }
+  catar::Vec3 centre;
+  catar::SphereOutlineReport report;
+  if (!catar::SphereFromOutline(camera, radius, points, centre, report, error))
+  {
+    return Error(imagePath + ": " + error);
+  }
+  std::printf("centre: %.9g %.9g %.9g\n", centre.x(), centre.y(), centre.z());
+  std::printf("distance: %.9g\n", report.distance);
+  std::printf("outline points: %d\n", report.pointCount);
+  std::printf("rms: %.4g px\n", report.rmsPixels);
+
+  camera.mirror = catar::MirrorOfOutline(centre, radius);
+  if (!output.empty() && !catar::SaveCalibration(output, camera, error))
+  {
+    return Error(error);
+  }
+  if (!overlay.empty() && !WriteOverlay(overlay, bgr, camera, points, centre, radius, error))
+  {
+    return Error(error);
+  }
+  return 0;
+}
