@@ -2,6 +2,7 @@
 // k; keyframed objects are where the still scene puts them; a frame recomputes only what moved;
 // video backgrounds and outputs round-trip through OpenCV; catadioptric-render writes every frame.
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricSceneRenderer.h"
@@ -321,12 +322,8 @@ TEST(Sequence, VideoBackgroundAndVideoOutput)
       EXPECT_EQ(int(corner[0]), 40 * k);
       EXPECT_EQ(int(corner[1]), 10);
       EXPECT_EQ(int(corner[2]), 200);
-      catar::Frame f;
-      f.width = w;
-      f.height = h;
-      const std::vector<unsigned char> bytes = Bytes(r);
-      f.rgba.assign(bytes.begin(), bytes.end());
-      ASSERT_TRUE(video.Write(k, f, error)) << error;
+      ASSERT_TRUE(video.Write(k, vtkCatadioptricImageSupport::ToFrame(r->GetOutput()), error))
+        << error;
     }
     video.Close();
     catar::FrameReader back;
@@ -371,18 +368,8 @@ TEST(Sequence, RenderProgramWritesEveryFrame)
     ASSERT_TRUE(png.Open(name, error)) << error;
     ASSERT_TRUE(png.Read(0, f, error)) << error;
     ASSERT_TRUE(r->RenderFrame(k));
-    const std::vector<unsigned char> mine = Bytes(r);
-    // The file is top row first; the renderer's bottom row first.
-    ASSERT_EQ(f.rgba.size(), mine.size());
-    const std::size_t row = static_cast<std::size_t>(f.width) * 4;
-    bool same = true;
-    for (int y = 0; y < f.height; ++y)
-    {
-      same = same &&
-        std::equal(f.rgba.begin() + row * y, f.rgba.begin() + row * (y + 1),
-          mine.begin() + row * (f.height - 1 - y));
-    }
-    EXPECT_TRUE(same) << "frame " << k;
+    EXPECT_TRUE(f.rgba == vtkCatadioptricImageSupport::ToFrame(r->GetOutput()).rgba)
+      << "frame " << k;
   }
   const std::string video = "\"" + program + "\" \"" + dir + "/scene.yaml\" -o \"" + dir +
     "/out.mp4\" --frames 0:3 --fps 12 > \"" + dir + "/log2.txt\" 2>&1";
@@ -395,6 +382,19 @@ TEST(Sequence, RenderProgramWritesEveryFrame)
   const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("frames: 3 (0 to 2)"), std::string::npos) << text;
   EXPECT_NE(text.find("encode"), std::string::npos) << text;
+}
+
+// The scene text refused by LoadScene with a sentence holding `expected`.
+void ExpectRefused(const std::string& path, const std::string& text, const std::string& expected)
+{
+  Write(path, text);
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName(path.c_str());
+  vtkObject::GlobalWarningDisplayOff(); // a global switch: on again below
+  EXPECT_FALSE(r->LoadScene()) << text;
+  vtkObject::GlobalWarningDisplayOn();
+  EXPECT_NE(std::string(r->GetLastError()).find(expected), std::string::npos)
+    << expected << ": " << r->GetLastError();
 }
 
 // Bad sequence input ends in a sentence naming the key.
@@ -412,13 +412,7 @@ TEST(Sequence, BadSequencesAreRefusedWithASentence)
     { "sequence: { frame: 3 }\n", "frame" } };
   for (const Case& c : cases)
   {
-    Write(dir + "/scene.yaml", Scene(Pose(0, 0), c.extra, "[ 70, 0, 20 ]"));
-    vtkNew<vtkCatadioptricSceneRenderer> r;
-    r->SetSceneFileName((dir + "/scene.yaml").c_str());
-    r->GlobalWarningDisplayOff();
-    EXPECT_FALSE(r->LoadScene()) << c.extra;
-    EXPECT_NE(std::string(r->GetLastError()).find(c.expect), std::string::npos)
-      << c.extra << ": " << r->GetLastError();
+    ExpectRefused(dir + "/scene.yaml", Scene(Pose(0, 0), c.extra, "[ 70, 0, 20 ]"), c.expect);
   }
   const Case keyframes[] = {
     { ", keyframes: [ { time: 1 }, { time: 1 } ]", "keyframes[1]" },
@@ -428,13 +422,7 @@ TEST(Sequence, BadSequencesAreRefusedWithASentence)
   };
   for (const Case& c : keyframes)
   {
-    Write(dir + "/scene.yaml", Scene(Pose(0, 0), "", "[ 70, 0, 20 ]", c.extra));
-    vtkNew<vtkCatadioptricSceneRenderer> r;
-    r->SetSceneFileName((dir + "/scene.yaml").c_str());
-    r->GlobalWarningDisplayOff();
-    EXPECT_FALSE(r->LoadScene()) << c.extra;
-    EXPECT_NE(std::string(r->GetLastError()).find(c.expect), std::string::npos)
-      << c.extra << ": " << r->GetLastError();
+    ExpectRefused(dir + "/scene.yaml", Scene(Pose(0, 0), "", "[ 70, 0, 20 ]", c.extra), c.expect);
   }
   std::string text = Scene(Pose(0, 0), "", "[ 70, 0, 20 ]");
   const std::string bg = "background: { type: color, color: [ 0.1, 0.1, 0.1 ] }";
@@ -446,13 +434,7 @@ TEST(Sequence, BadSequencesAreRefusedWithASentence)
   {
     std::string t = text;
     t.replace(t.find(bg), bg.size(), c.extra);
-    Write(dir + "/scene.yaml", t);
-    vtkNew<vtkCatadioptricSceneRenderer> r;
-    r->SetSceneFileName((dir + "/scene.yaml").c_str());
-    r->GlobalWarningDisplayOff();
-    EXPECT_FALSE(r->LoadScene()) << c.extra;
-    EXPECT_NE(std::string(r->GetLastError()).find(c.expect), std::string::npos)
-      << c.extra << ": " << r->GetLastError();
+    ExpectRefused(dir + "/scene.yaml", t, c.expect);
   }
 }
 
