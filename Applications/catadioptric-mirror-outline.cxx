@@ -8,7 +8,7 @@
 #include "CalibrationIO.h"
 #include "MirrorOutline.h"
 
-#include <CLI/CLI.hpp>
+#include "CommandLine.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
@@ -103,18 +103,10 @@ int main(int argc, char* argv[])
     "-o,--output", output, "write the calibration with the mirror {type: sphere, center, radius}");
   app.add_option("--overlay", overlay,
     "write the image with the detected outline points (green) and the sphere's outline (red)");
-  try
+  const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
+  if (parsed >= 0)
   {
-    app.parse(argc, argv);
-  }
-  catch (const CLI::CallForHelp&)
-  {
-    std::fputs(app.help().c_str(), stdout);
-    return 0;
-  }
-  catch (const CLI::ParseError& e)
-  {
-    return Error(std::string(e.what()) + " (run with --help for usage)", 2);
+    return parsed;
   }
 
   if (!(radius > 0.0) || !std::isfinite(radius))

@@ -8,7 +8,7 @@
 #include "CalibrationIO.h"
 #include "PoseEstimation.h"
 
-#include <CLI/CLI.hpp>
+#include "CommandLine.h"
 
 #include <cerrno>
 #include <cmath>
@@ -183,18 +183,10 @@ int main(int argc, char* argv[])
     ->type_name("PX")
     ->check(positive);
   app.add_option("--seed", options.seed, "RANSAC seed (default 0)")->type_name("N");
-  try
+  const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
+  if (parsed >= 0)
   {
-    app.parse(argc, argv);
-  }
-  catch (const CLI::CallForHelp&)
-  {
-    std::fputs(app.help().c_str(), stdout);
-    return 0;
-  }
-  catch (const CLI::ParseError& e)
-  {
-    return Error(std::string(e.what()) + " (run with --help for usage)", 2);
+    return parsed;
   }
 
   catar::CameraModel camera;
