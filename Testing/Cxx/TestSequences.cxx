@@ -339,6 +339,60 @@ TEST(Sequence, VideoBackgroundAndVideoOutput)
   }
 }
 
+// A background matched to the trajectory by time: frame k is at start_time + k / fps and the
+// camera at the trajectory's pose then (interpolated between poses); matched by index, frame k
+// takes pose k and the shorter of the two sets the count (a note says so).
+TEST(Sequence, BackgroundFramesMatchedByTimeOrIndex)
+{
+  const std::string dir = Folder("match");
+  const int w = 240, h = 190;
+  for (int k = 0; k < 6; ++k)
+  {
+    catar::Frame f;
+    f.width = w;
+    f.height = h;
+    f.rgba.assign(static_cast<std::size_t>(w) * h * 4, static_cast<unsigned char>(40 * k));
+    catar::FrameWriter writer;
+    std::string error;
+    ASSERT_TRUE(writer.Open(dir + "/bg_%02d.png", w, h, 0.0, error)) << error;
+    ASSERT_TRUE(writer.Write(k, f, error)) << error;
+  }
+  std::string error;
+  const catar::Trajectory trajectory = SlidingCamera(3); // poses at 0, 0.3 and 0.6 s
+  ASSERT_TRUE(catar::SaveTrajectory(dir + "/poses.txt", trajectory, "matrix", error)) << error;
+  for (const std::string match : { "time", "index" })
+  {
+    std::string text = Scene(Pose(0, 0), "trajectory: poses.txt\n", "[ 70, 0, 20 ]");
+    const std::string bg = "background: { type: color, color: [ 0.1, 0.1, 0.1 ] }";
+    text.replace(text.find(bg), bg.size(),
+      "background: { type: video, file: bg_%02d.png, fps: 10, start_time: 0.05, match: " + match +
+        " }");
+    Write(dir + "/scene.yaml", text);
+    vtkNew<vtkCatadioptricSceneRenderer> r;
+    r->SetSceneFileName((dir + "/scene.yaml").c_str());
+    ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+    const bool byTime = match == "time";
+    ASSERT_EQ(r->GetNumberOfFrames(), byTime ? 6 : 3);
+    EXPECT_EQ(std::string(r->GetSequenceNote()).empty(), byTime) << r->GetSequenceNote();
+    for (int k = 0; k < r->GetNumberOfFrames(); ++k)
+    {
+      ASSERT_TRUE(r->RenderFrame(k)) << r->GetLastError();
+      const double t = byTime ? 0.05 + k / 10.0 : 0.3 * k;
+      EXPECT_NEAR(r->GetFrameTime(k), t, 1e-12);
+      const catar::Mat4 expected =
+        byTime ? trajectory.PoseAt(t) : trajectory.poses[k].worldToCamera;
+      double m[16];
+      r->GetCamera()->GetWorldToCameraElements(m);
+      for (int i = 0; i < 16; ++i)
+      {
+        EXPECT_NEAR(m[i], expected(i / 4, i % 4), 1e-15) << match << " frame " << k;
+      }
+      const auto* corner = static_cast<unsigned char*>(r->GetOutput()->GetScalarPointer(0, 0, 0));
+      EXPECT_EQ(int(corner[0]), 40 * k) << "background frame " << k;
+    }
+  }
+}
+
 // The program: every frame of the range written, frame k the renderer's frame k; a video with
 // the range's frame count.
 TEST(Sequence, RenderProgramWritesEveryFrame)
