@@ -108,6 +108,24 @@ catar::Mat4 Placement(const catar::Vec3& position, const Eigen::Quaterniond& rot
   return m;
 }
 
+// Sets the camera's world-to-camera pose; a camera at that pose already is left untouched (not
+// modified, so that its projections do not run again).
+void SetPose(vtkCatadioptricCamera* camera, const catar::Mat4& pose)
+{
+  double current[16], rowMajor[16];
+  camera->GetWorldToCameraElements(current);
+  bool same = true;
+  for (int i = 0; i < 16; ++i)
+  {
+    rowMajor[i] = pose(i / 4, i % 4);
+    same = same && current[i] == rowMajor[i];
+  }
+  if (!same)
+  {
+    camera->SetWorldToCameraElements(rowMajor);
+  }
+}
+
 catar::Mat4 Placement(const catar::SceneObject& o)
 {
   const double k = 3.14159265358979323846 / 180.0;
@@ -203,12 +221,7 @@ void vtkCatadioptricSceneRenderer::Internals::EstimatePose(const catar::Frame& f
   {
     report << found.size() << " markers, " << pose.inlierCount << " of " << pose.inliers.size()
            << " corners inliers, " << pose.rmsPixels << " px rms";
-    double rowMajor[16];
-    for (int i = 0; i < 16; ++i)
-    {
-      rowMajor[i] = pose.worldToCamera(i / 4, i % 4);
-    }
-    this->Camera->SetWorldToCameraElements(rowMajor);
+    SetPose(this->Camera, pose.worldToCamera);
   }
   else
   {
@@ -221,24 +234,10 @@ void vtkCatadioptricSceneRenderer::Internals::EstimatePose(const catar::Frame& f
 bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
 {
   const double time = this->Frames.Time(k);
-  // The camera: touched only when the pose changes (its projections then run again); with
-  // markers, below, from the frame.
-  const catar::Mat4 pose = this->Frames.Pose(k);
-  double current[16];
-  this->Camera->GetWorldToCameraElements(current);
-  bool same = !this->UseMarkers;
-  for (int i = 0; i < 16; ++i)
+  // The camera (with markers, below, from the frame).
+  if (!this->UseMarkers)
   {
-    same = same && current[i] == pose(i / 4, i % 4);
-  }
-  if (!same && !this->UseMarkers)
-  {
-    double rowMajor[16];
-    for (int i = 0; i < 16; ++i)
-    {
-      rowMajor[i] = pose(i / 4, i % 4);
-    }
-    this->Camera->SetWorldToCameraElements(rowMajor);
+    SetPose(this->Camera, this->Frames.Pose(k));
   }
   for (Moving& m : this->MovingObjects)
   {
@@ -392,16 +391,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
       }
     }
   }
-  if (!scene.trajectory.Empty())
-  {
-    const catar::Mat4 pose = in.Frames.Pose(0);
-    double rowMajor[16];
-    for (int i = 0; i < 16; ++i)
-    {
-      rowMajor[i] = pose(i / 4, i % 4);
-    }
-    in.Camera->SetWorldToCameraElements(rowMajor);
-  }
+  SetPose(in.Camera, in.Frames.Pose(0));
   auto t1 = Clock::now();
   in.Times[0] = Seconds(t0, t1);
 
