@@ -1,13 +1,14 @@
 #!/bin/bash
 # Runs a command that opens an OpenGL window on the X display (pvpython, the trade chart) and runs
-# it again, up to three times in all, when it could not start its window: vtkXOpenGLRenderWindow
-# reports it (e.g. "bad X server connection": the shared Xvfb turns a connection away now and then
-# under a parallel test run), or the process aborts before printing anything of its own (seen
-# once in about ten full parallel runs: SIGABRT one second in, no message). Every retry is
-# printed; a failure that repeats is returned.
+# it again, up to five times in all, waiting 2, 4, 8 and 16 seconds between tries, when it could
+# not start its window: vtkXOpenGLRenderWindow reports it (e.g. "bad X server connection": the
+# shared Xvfb turns a connection away now and then under a parallel test run), or the process
+# aborts before printing anything of its own (seen once in about ten full parallel runs: SIGABRT
+# one second in, no message; once, on a machine loaded with two other builds, three times in a
+# row a second apart). Every retry is printed; a failure that repeats is returned.
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-for attempt in 1 2 3; do
+for attempt in 1 2 3 4 5; do
   "$@" 2>&1 | tee "$log"
   status=${PIPESTATUS[0]}
   if [[ $status -eq 0 ]]; then
@@ -20,7 +21,10 @@ for attempt in 1 2 3; do
   else
     exit "$status"
   fi
-  echo "RetryOnDisplayError: attempt $attempt: $why; again" >&2
-  sleep 1
+  if [[ $attempt -eq 5 ]]; then
+    break
+  fi
+  echo "RetryOnDisplayError: attempt $attempt: $why; again in $((2 ** attempt)) s" >&2
+  sleep $((2 ** attempt))
 done
 exit "$status"
