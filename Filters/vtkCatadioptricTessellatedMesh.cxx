@@ -56,7 +56,8 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
         continue;
       }
       const vtkIdType* v = ids->GetPointer(0);
-      const bool allSeen = catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) &&
+      const bool allSeen =
+        catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) &&
         catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) &&
         catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]]));
       if (allSeen && !(options.bendTolerance > 0.0))
@@ -86,8 +87,8 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   }
   // The pieces, a tessellation per chosen triangle (in parallel), then numbered in order.
   std::vector<catar::Tessellation> pieces(chosen.size());
-  vtkCatadioptricParallel::For(0, static_cast<vtkIdType>(chosen.size()), 1,
-    [&](vtkIdType begin, vtkIdType end) {
+  vtkCatadioptricParallel::For(
+    0, static_cast<vtkIdType>(chosen.size()), 1, [&](vtkIdType begin, vtkIdType end) {
       vtkNew<vtkIdList> ids;
       for (vtkIdType k = begin; k < end; ++k)
       {
@@ -97,8 +98,8 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
         std::array<catar::ProjectedPoint, 3> projected;
         Corners(points, status, pixels, v, world, projected);
         // Ids local to this tessellation, renumbered below.
-        catar::TessellateTriangle(projector, chosen[k], { { v[0], v[1], v[2] } }, world,
-          projected, nPoints, options, pieces[k]);
+        catar::TessellateTriangle(projector, chosen[k], { { v[0], v[1], v[2] } }, world, projected,
+          nPoints, options, pieces[k]);
       }
     });
   added.points.clear();

@@ -12,7 +12,7 @@
 
 #include "CatadioptricARFiltersModule.h" // for export macro
 #include "ImageTessellation.h"           // for catar::TessellationOptions
-#include "vtkType.h"                      // for vtkIdType
+#include "vtkType.h"                     // for vtkIdType
 
 class vtkPolyData;
 
