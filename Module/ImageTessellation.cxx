@@ -283,6 +283,13 @@ private:
 TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3>& world,
   const std::array<ProjectedPoint, 3>& projected, const TessellationOptions& options)
 {
+  for (int i = 0; i < 3; ++i)
+  {
+    if (projected[i].status == ProjectionStatus::InvalidInput || !world[i].allFinite())
+    {
+      return TriangleFate::Drop; // a corner that is not a point (NaN, Inf)
+    }
+  }
   const int seen = int(Seen(projected[0])) + int(Seen(projected[1])) + int(Seen(projected[2]));
   if (seen == 3)
   {

@@ -67,7 +67,8 @@ struct Tessellation
 enum class TriangleFate : std::uint8_t
 {
   Keep,      ///< drawn as it is (seen whole, edges within the bend tolerance)
-  Drop,      ///< not seen at all (its vertices, edge midpoints and centroid have no reflection)
+  Drop,      ///< not seen at all (its vertices, edge midpoints and centroid have no reflection),
+             ///< or a corner is not a point (NaN, Inf)
   Tessellate ///< split (crosses the boundary, or bends too much)
 };
 
