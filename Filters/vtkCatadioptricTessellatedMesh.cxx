@@ -8,6 +8,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace
@@ -43,6 +44,14 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   }
   vtkPoints* points = input->GetPoints();
   const vtkIdType nPoints = input->GetNumberOfPoints();
+  // Without a bend tolerance only triangles with an unseen corner can need it: none when every
+  // point is seen (the usual frame), found without a pass over the cells.
+  if (!(options.bendTolerance > 0.0) && std::all_of(status, status + nPoints, [](unsigned char s) {
+        return catar::HasProjection(static_cast<catar::ProjectionStatus>(s));
+      }))
+  {
+    return 0;
+  }
   // Which triangles to split: a quick pass on the corners' statuses (all seen, no bend
   // tolerance: kept), then each candidate's fate.
   std::vector<unsigned char> split(static_cast<std::size_t>(nPolys), 0);
