@@ -43,6 +43,8 @@ void Usage(FILE* out)
     "the video's frame rate (default: the sequence's). A progress line on standard error and a\n"
     "per-stage summary follow. --markers BOARD estimates each frame's camera pose from the\n"
     "board's markers seen in the background (a video or image background; README \"Markers\").\n"
+    "--adaptive P splits, every frame, the triangles whose edges bend more than P pixels\n"
+    "(README \"Edges\"; overrides the scene's 'edges').\n"
     "\n"
     "--repeat N renders the frame N times and reports the per-frame stages of the last one.\n"
     "--target-area A remeshes every object to triangles of about A square metres;\n"
@@ -199,6 +201,7 @@ int main(int argc, char* argv[])
   long long first = 0, end = -1; // --frames (end -1: the sequence's last)
   double fps = 0.0;
   std::string markers;
+  double adaptive = 0.0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -232,6 +235,16 @@ int main(int argc, char* argv[])
         std::fprintf(stderr,
           "catadioptric-render: --frames needs A:B with 0 <= A < B (frames A to B-1), A:, :B "
           "or A\n");
+        return 2;
+      }
+    }
+    else if (arg == "--adaptive" && i + 1 < argc)
+    {
+      char* e = nullptr;
+      adaptive = std::strtod(argv[++i], &e);
+      if (!e || *e != '\0' || !(adaptive > 0.0 && adaptive <= 1e6))
+      {
+        std::fprintf(stderr, "catadioptric-render: --adaptive needs a positive number (pixels)\n");
         return 2;
       }
     }
@@ -293,6 +306,7 @@ int main(int argc, char* argv[])
   renderer->SetRemeshTargetArea(targetArea);
   renderer->SetRemeshPixelTolerance(pixelTolerance);
   renderer->SetMarkerBoardFileName(markers.empty() ? nullptr : markers.c_str());
+  renderer->SetAdaptiveTolerance(adaptive);
   if (!renderer->LoadScene())
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());

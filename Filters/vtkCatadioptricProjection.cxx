@@ -9,6 +9,7 @@
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricPointReader.h"
+#include "vtkCatadioptricTessellatedMesh.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
@@ -331,6 +332,54 @@ int vtkCatadioptricProjection::RequestData(
       catar::ProjectRun(projector, solver, begin, end, points, store);
     });
   }
+  // Per-frame tessellation: triangles across the visibility boundary (and, adaptive, those that
+  // bend too much) replaced by their pieces; the new points' projections appended.
+  this->NumberOfSplitTriangles = 0;
+  if (nPts > 0 && input->GetNumberOfPolys() > 0)
+  {
+    catar::TessellationOptions options;
+    options.boundaryTolerance = this->BoundaryTolerance;
+    options.bendTolerance = this->AdaptiveTolerance;
+    options.solver = solver;
+    catar::Tessellation added;
+    this->NumberOfSplitTriangles = vtkCatadioptricTessellatedMesh::Refine(
+      input, projector, options, status->GetPointer(0), pixels->GetPointer(0), added, output);
+    if (this->NumberOfSplitTriangles > 0)
+    {
+      camera->WriteToFieldData(output->GetFieldData());
+      const vtkIdType nNew = static_cast<vtkIdType>(added.points.size());
+      for (vtkDataArray* a : { static_cast<vtkDataArray*>(pixels.Get()),
+             static_cast<vtkDataArray*>(mirror.Get()), static_cast<vtkDataArray*>(path.Get()),
+             static_cast<vtkDataArray*>(status.Get()), static_cast<vtkDataArray*>(pvis.Get()) })
+      {
+        a->Resize(nPts + nNew);
+        a->SetNumberOfTuples(nPts + nNew);
+      }
+      std::unique_ptr<VertexRecord[]> grown(new VertexRecord[nPts + nNew]);
+      std::copy(records.get(), records.get() + nPts, grown.get());
+      for (vtkIdType k = 0; k < nNew; ++k)
+      {
+        const catar::TessellatedPoint& p = added.points[k];
+        const catar::ProjectedPoint& q = p.projected;
+        const vtkIdType i = nPts + k;
+        pixels->SetTypedTuple(i, q.pixel.data());
+        mirror->SetTypedTuple(i, q.mirrorPoint.data());
+        path->SetValue(i, q.pathLength);
+        status->SetValue(i, static_cast<unsigned char>(q.status));
+        pvis->SetValue(i, catar::HasProjection(q.status) ? 1 : 0);
+        VertexRecord& r = grown[i];
+        std::copy(p.world.data(), p.world.data() + 3, r.point);
+        std::copy(q.pixel.data(), q.pixel.data() + 2, r.pixel);
+        for (int c = 0; c < 3; ++c)
+        {
+          r.mirror[c] = static_cast<float>(q.mirrorPoint[c]);
+        }
+        r.visible = pvis->GetValue(i);
+      }
+      records.swap(grown);
+    }
+  }
+  vtkPolyData* mesh = this->NumberOfSplitTriangles > 0 ? output : input;
   vtkPointData* pd = output->GetPointData();
   pd->AddArray(pixels);
   pd->AddArray(mirror);
@@ -339,7 +388,7 @@ int vtkCatadioptricProjection::RequestData(
   pd->AddArray(pvis);
   this->UpdateProgress(0.5);
 
-  const vtkIdType nCells = input->GetNumberOfCells();
+  const vtkIdType nCells = mesh->GetNumberOfCells();
   vtkNew<vtkDoubleArray> depth;
   depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
   depth->SetNumberOfTuples(nCells);
@@ -351,9 +400,9 @@ int vtkCatadioptricProjection::RequestData(
   cvis->SetName(vtkCatadioptricArrayNames::Visible);
   cvis->SetNumberOfTuples(nCells);
   // Zeros for vertices, lines and strips; the polygons' values are all written below.
-  const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  const vtkIdType endPoly = firstPoly + input->GetNumberOfPolys();
-  const bool polysWritten = input->GetNumberOfPolys() > 0 && nPts > 0;
+  const vtkIdType firstPoly = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+  const vtkIdType endPoly = firstPoly + mesh->GetNumberOfPolys();
+  const bool polysWritten = mesh->GetNumberOfPolys() > 0 && nPts > 0;
   for (const auto& range : { std::make_pair(vtkIdType(0), polysWritten ? firstPoly : nCells),
          std::make_pair(polysWritten ? endPoly : nCells, nCells) })
   {
@@ -381,7 +430,7 @@ int vtkCatadioptricProjection::RequestData(
     const catar::PoseFrames& pose = projector.GetPose();
     worker.CameraToWorldRotation = pose.rotationT;
     worker.CameraCentre = pose.centre;
-    input->GetPolys()->Visit(CellDispatch{}, worker);
+    mesh->GetPolys()->Visit(CellDispatch{}, worker);
   }
   vtkCellData* cd = output->GetCellData();
   cd->AddArray(depth);
@@ -399,4 +448,6 @@ void vtkCatadioptricProjection::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CalibrationFileName: " << (file ? file : "(none)") << "\n";
   os << indent << "Solver: " << (this->Solver == ITERATIVE ? "Iterative" : "Quartic") << "\n";
   os << indent << "BackFaceCulling: " << (this->BackFaceCulling ? "On" : "Off") << "\n";
+  os << indent << "BoundaryTolerance: " << this->BoundaryTolerance << "\n";
+  os << indent << "AdaptiveTolerance: " << this->AdaptiveTolerance << "\n";
 }

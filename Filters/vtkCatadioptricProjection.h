@@ -98,6 +98,23 @@ public:
   vtkBooleanMacro(BackFaceCulling, bool);
   ///@}
 
+  ///@{
+  /// Per-frame tessellation (README "Edges"), in pixels. BoundaryTolerance (default 0.25):
+  /// triangles that cross the visibility boundary (part of them reflected, part hidden by the
+  /// mirror, outside a quadric's z_range, ...) are split and cut at the boundary until it is
+  /// drawn within this many pixels; 0 drops them whole. AdaptiveTolerance (default 0, off):
+  /// triangles whose edges bend more than this many pixels in this frame's image are split, again
+  /// and again, until none does. Split triangles' pieces take their triangle's cell data, new
+  /// points point data interpolated from its vertices; other triangles are left as they are.
+  vtkSetClampMacro(BoundaryTolerance, double, 0.0, 1e6);
+  vtkGetMacro(BoundaryTolerance, double);
+  vtkSetClampMacro(AdaptiveTolerance, double, 0.0, 1e6);
+  vtkGetMacro(AdaptiveTolerance, double);
+  ///@}
+
+  /// Triangles the last execution split (per-frame tessellation).
+  vtkGetMacro(NumberOfSplitTriangles, vtkIdType);
+
   /// The modification time includes the camera's.
   vtkMTimeType GetMTime() override;
 
@@ -115,6 +132,9 @@ protected:
   vtkCatadioptricCameraSlot CameraSlot;
   int Solver = QUARTIC;
   bool BackFaceCulling = false;
+  double BoundaryTolerance = 0.25;
+  double AdaptiveTolerance = 0.0;
+  vtkIdType NumberOfSplitTriangles = 0;
 
 private:
   vtkCatadioptricProjection(const vtkCatadioptricProjection&) = delete;

@@ -488,8 +488,8 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     throw fs::ParseError("a scene must be a map of keys (camera, output, objects, ...)");
   }
   fs::CheckKeys(root,
-    { "camera", "output", "solver", "cull_back_faces", "visibility", "background", "lighting",
-      "remesh", "objects", "trajectory", "sequence", "markers" });
+    { "camera", "output", "solver", "cull_back_faces", "visibility", "edges", "adaptive",
+      "background", "lighting", "remesh", "objects", "trajectory", "sequence", "markers" });
   const fs::Node cam = root["camera"];
   if (cam.isString())
   {
@@ -563,6 +563,48 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     throw fs::ParseError("'solver' must be 'quartic' or 'iterative'");
   }
   scene.cullBackFaces = fs::Flag(root, "cull_back_faces", false);
+  const fs::Node edges = root["edges"];
+  if (!edges.empty() && !edges.isNone())
+  {
+    if (!edges.isMap())
+    {
+      throw fs::ParseError("'edges' must be a map (boundary_tolerance, adaptive_tolerance)");
+    }
+    try
+    {
+      fs::CheckKeys(edges, { "boundary_tolerance", "adaptive_tolerance" });
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(std::string("edges: ") + e.what());
+    }
+    scene.boundaryTolerance = fs::Number(edges, "boundary_tolerance", scene.boundaryTolerance);
+    scene.adaptiveTolerance = fs::Number(edges, "adaptive_tolerance", scene.adaptiveTolerance);
+  }
+  const fs::Node adaptive = root["adaptive"];
+  if (!adaptive.empty() && !adaptive.isNone())
+  {
+    if (!adaptive.isMap())
+    {
+      throw fs::ParseError("'adaptive' must be a map (pixel_tolerance)");
+    }
+    try
+    {
+      fs::CheckKeys(adaptive, { "pixel_tolerance" });
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(std::string("adaptive: ") + e.what());
+    }
+    scene.adaptiveTolerance = fs::Number(adaptive, "pixel_tolerance");
+  }
+  for (const double t : { scene.boundaryTolerance, scene.adaptiveTolerance })
+  {
+    if (!(t >= 0.0 && t <= 1e6))
+    {
+      throw fs::ParseError("edges: tolerances must be pixels in [0, 1e6] (0: off)");
+    }
+  }
   scene.visibility = fs::String(root, "visibility", scene.visibility);
   if (scene.visibility != "painter" && scene.visibility != "depth")
   {

@@ -162,6 +162,11 @@ struct SceneDescription
   /// Key `cull_back_faces` (0 or 1, default 0): vtkCatadioptricProjection's BackFaceCulling for
   /// every object (only for closed, consistently oriented meshes).
   bool cullBackFaces = false;
+  /// Key `edges: { boundary_tolerance: B, adaptive_tolerance: A }` (pixels; defaults 0.25 and 0):
+  /// vtkCatadioptricProjection's BoundaryTolerance and AdaptiveTolerance for every object (README
+  /// "Edges"). Key `adaptive: { pixel_tolerance: A }` is the same as adaptive_tolerance.
+  double boundaryTolerance = 0.25;
+  double adaptiveTolerance = 0.0;
   SceneBackground background;
   SceneLighting lighting;
   SceneRemesh remesh; ///< default of every object

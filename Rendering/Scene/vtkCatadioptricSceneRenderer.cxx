@@ -596,6 +596,9 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     }
     proj->SetCamera(in.Camera);
     proj->SetBackFaceCulling(scene.cullBackFaces);
+    proj->SetBoundaryTolerance(scene.boundaryTolerance);
+    proj->SetAdaptiveTolerance(
+      this->AdaptiveTolerance > 0.0 ? this->AdaptiveTolerance : scene.adaptiveTolerance);
     proj->SetSolver(scene.solver == catar::SolverType::Iterative
         ? vtkCatadioptricProjection::ITERATIVE
         : vtkCatadioptricProjection::QUARTIC);

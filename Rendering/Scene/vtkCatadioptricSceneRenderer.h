@@ -56,6 +56,14 @@ public:
   ///@}
 
   ///@{
+  /// Adaptive tessellation of every object (vtkCatadioptricProjection's AdaptiveTolerance,
+  /// pixels), overriding the scene's `edges`/`adaptive`; 0 (default) keeps the scene's. Applied
+  /// at the next LoadScene().
+  vtkSetClampMacro(AdaptiveTolerance, double, 0.0, 1e6);
+  vtkGetMacro(AdaptiveTolerance, double);
+  ///@}
+
+  ///@{
   /// Draw consecutive objects that can share a pipeline as one mesh (default on): untextured
   /// objects with the same point and cell arrays, with the quartic solver; when lit, their
   /// materials travel with the mesh (vtkCatadioptricLighting's "Materials" and "MaterialIndex").
@@ -152,6 +160,7 @@ protected:
   double RemeshTargetArea = 0.0;
   double RemeshPixelTolerance = 0.0;
   bool JoinObjects = true;
+  double AdaptiveTolerance = 0.0;
   char* MarkerBoardFileName = nullptr;
 
 private:

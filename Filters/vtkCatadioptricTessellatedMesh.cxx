@@ -1,0 +1,217 @@
+#include "vtkCatadioptricTessellatedMesh.h"
+
+#include "vtkCatadioptricParallel.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkIdList.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace
+{
+constexpr vtkIdType kGrain = 1024;
+
+// The triangle's corners: world points and projections (status and pixel; the rest is not read).
+void Corners(vtkPoints* points, const unsigned char* status, const double* pixels,
+  const vtkIdType* ids, std::array<catar::Vec3, 3>& world,
+  std::array<catar::ProjectedPoint, 3>& projected)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    double p[3];
+    points->GetPoint(ids[k], p);
+    world[k] = catar::Vec3(p[0], p[1], p[2]);
+    projected[k].status = static_cast<catar::ProjectionStatus>(status[ids[k]]);
+    projected[k].pixel = catar::Vec2(pixels[2 * ids[k]], pixels[2 * ids[k] + 1]);
+  }
+}
+} // namespace
+
+vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
+  const catar::Projector& projector, const catar::TessellationOptions& options,
+  const unsigned char* status, const double* pixels, catar::Tessellation& added,
+  vtkPolyData* output)
+{
+  vtkCellArray* polys = input->GetPolys();
+  const vtkIdType nPolys = polys->GetNumberOfCells();
+  if (nPolys == 0 || !(options.boundaryTolerance > 0.0 || options.bendTolerance > 0.0))
+  {
+    return 0;
+  }
+  vtkPoints* points = input->GetPoints();
+  const vtkIdType nPoints = input->GetNumberOfPoints();
+  // Without a bend tolerance only triangles with an unseen corner can need it: none when every
+  // point is seen (the usual frame), found without a pass over the cells.
+  if (!(options.bendTolerance > 0.0) && std::all_of(status, status + nPoints, [](unsigned char s) {
+        return catar::HasProjection(static_cast<catar::ProjectionStatus>(s));
+      }))
+  {
+    return 0;
+  }
+  // Which triangles to split: a quick pass on the corners' statuses (all seen, no bend
+  // tolerance: kept), then each candidate's fate.
+  std::vector<unsigned char> split(static_cast<std::size_t>(nPolys), 0);
+  vtkCatadioptricParallel::For(0, nPolys, kGrain, [&](vtkIdType begin, vtkIdType end) {
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      polys->GetCellAtId(c, ids);
+      if (ids->GetNumberOfIds() != 3)
+      {
+        continue;
+      }
+      const vtkIdType* v = ids->GetPointer(0);
+      const bool allSeen =
+        catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) &&
+        catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) &&
+        catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]]));
+      if (allSeen && !(options.bendTolerance > 0.0))
+      {
+        continue;
+      }
+      std::array<catar::Vec3, 3> world;
+      std::array<catar::ProjectedPoint, 3> projected;
+      Corners(points, status, pixels, v, world, projected);
+      split[c] = catar::TriangleFateOf(projector, world, projected, options) ==
+          catar::TriangleFate::Tessellate
+        ? 1
+        : 0;
+    }
+  });
+  std::vector<vtkIdType> chosen;
+  for (vtkIdType c = 0; c < nPolys; ++c)
+  {
+    if (split[c])
+    {
+      chosen.push_back(c);
+    }
+  }
+  if (chosen.empty())
+  {
+    return 0;
+  }
+  // The pieces, a tessellation per chosen triangle (in parallel), then numbered in order.
+  std::vector<catar::Tessellation> pieces(chosen.size());
+  vtkCatadioptricParallel::For(
+    0, static_cast<vtkIdType>(chosen.size()), 1, [&](vtkIdType begin, vtkIdType end) {
+      vtkNew<vtkIdList> ids;
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        polys->GetCellAtId(chosen[k], ids);
+        const vtkIdType* v = ids->GetPointer(0);
+        std::array<catar::Vec3, 3> world;
+        std::array<catar::ProjectedPoint, 3> projected;
+        Corners(points, status, pixels, v, world, projected);
+        // Ids local to this tessellation, renumbered below.
+        catar::TessellateTriangle(projector, chosen[k], { { v[0], v[1], v[2] } }, world, projected,
+          nPoints, options, pieces[k]);
+      }
+    });
+  added.points.clear();
+  added.triangles.clear();
+  std::vector<std::vector<catar::TessellatedTriangle>> byCell(chosen.size());
+  for (std::size_t k = 0; k < chosen.size(); ++k)
+  {
+    const std::int64_t shift = static_cast<std::int64_t>(added.points.size());
+    for (catar::TessellatedTriangle t : pieces[k].triangles)
+    {
+      for (std::int64_t& id : t.points)
+      {
+        id = id < nPoints ? id : id + shift;
+      }
+      byCell[k].push_back(t);
+    }
+    added.points.insert(added.points.end(), pieces[k].points.begin(), pieces[k].points.end());
+  }
+
+  // Points and point data: the input's, then the new ones interpolated.
+  const vtkIdType nNew = static_cast<vtkIdType>(added.points.size());
+  vtkNew<vtkPoints> outPoints;
+  outPoints->SetDataTypeToDouble();
+  outPoints->SetNumberOfPoints(nPoints + nNew);
+  for (vtkIdType i = 0; i < nPoints; ++i)
+  {
+    outPoints->SetPoint(i, points->GetPoint(i));
+  }
+  vtkPointData* inPD = input->GetPointData();
+  vtkNew<vtkPointData> outPD;
+  outPD->InterpolateAllocate(inPD, nPoints + nNew);
+  for (vtkIdType i = 0; i < nPoints; ++i)
+  {
+    outPD->CopyData(inPD, i, i);
+  }
+  vtkNew<vtkIdList> parents;
+  parents->SetNumberOfIds(3);
+  for (vtkIdType i = 0; i < nNew; ++i)
+  {
+    const catar::TessellatedPoint& p = added.points[i];
+    outPoints->SetPoint(nPoints + i, p.world.data());
+    double weights[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      parents->SetId(k, p.parents[k]);
+      weights[k] = p.weights[k];
+    }
+    outPD->InterpolatePoint(inPD, nPoints + i, parents, weights);
+  }
+
+  // Cells: verts and lines as they are, the polygons with the split ones' pieces in place, the
+  // strips; cell data copied from each piece's triangle.
+  vtkCellData* inCD = input->GetCellData();
+  vtkNew<vtkCellData> outCD;
+  vtkIdType nPieces = 0;
+  for (const auto& cell : byCell)
+  {
+    nPieces += static_cast<vtkIdType>(cell.size());
+  }
+  const vtkIdType nVerts = input->GetNumberOfVerts(), nLines = input->GetNumberOfLines();
+  const vtkIdType nCellsOut =
+    input->GetNumberOfCells() - static_cast<vtkIdType>(chosen.size()) + nPieces;
+  outCD->CopyAllocate(inCD, nCellsOut);
+  vtkIdType out = 0;
+  for (vtkIdType c = 0; c < nVerts + nLines; ++c)
+  {
+    outCD->CopyData(inCD, c, out++);
+  }
+  vtkNew<vtkCellArray> outPolys;
+  outPolys->AllocateEstimate(nPolys - static_cast<vtkIdType>(chosen.size()) + nPieces, 3);
+  vtkNew<vtkIdList> ids;
+  std::size_t next = 0;
+  for (vtkIdType c = 0; c < nPolys; ++c)
+  {
+    const vtkIdType inCell = nVerts + nLines + c;
+    if (next < chosen.size() && chosen[next] == c)
+    {
+      for (const catar::TessellatedTriangle& t : byCell[next])
+      {
+        const vtkIdType tri[3] = { t.points[0], t.points[1], t.points[2] };
+        outPolys->InsertNextCell(3, tri);
+        outCD->CopyData(inCD, inCell, out++);
+      }
+      ++next;
+      continue;
+    }
+    polys->GetCellAtId(c, ids);
+    outPolys->InsertNextCell(ids);
+    outCD->CopyData(inCD, inCell, out++);
+  }
+  const vtkIdType firstStrip = nVerts + nLines + nPolys;
+  for (vtkIdType c = 0; c < input->GetNumberOfStrips(); ++c)
+  {
+    outCD->CopyData(inCD, firstStrip + c, out++);
+  }
+  output->Initialize();
+  output->SetPoints(outPoints);
+  output->SetVerts(input->GetVerts());
+  output->SetLines(input->GetLines());
+  output->SetPolys(outPolys);
+  output->SetStrips(input->GetStrips());
+  output->GetPointData()->ShallowCopy(outPD);
+  output->GetCellData()->ShallowCopy(outCD);
+  output->GetFieldData()->ShallowCopy(input->GetFieldData());
+  return static_cast<vtkIdType>(chosen.size());
+}

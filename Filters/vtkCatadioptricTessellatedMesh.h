@@ -1,0 +1,34 @@
+/**
+ * @class   vtkCatadioptricTessellatedMesh
+ * @brief   a projected mesh with the triangles this frame's image needs split (private helper)
+ *
+ * vtkCatadioptricProjection's per-frame tessellation (Module/ImageTessellation.h): triangles that
+ * cross the visibility boundary, and (adaptive) those whose edges bend more than a tolerance, are
+ * replaced by their pieces; new points take point data interpolated from their input triangle's
+ * vertices, pieces take their triangle's cell data. Not wrapped.
+ */
+#ifndef vtkCatadioptricTessellatedMesh_h
+#define vtkCatadioptricTessellatedMesh_h
+
+#include "CatadioptricARFiltersModule.h" // for export macro
+#include "ImageTessellation.h"           // for catar::TessellationOptions
+#include "vtkType.h"                     // for vtkIdType
+
+class vtkPolyData;
+
+class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricTessellatedMesh
+{
+public:
+  /// Tessellates the triangles of `input` that need it this frame (polygons of more sides are
+  /// left as they are), given the projections of its points (`status`, one ProjectionStatus per
+  /// input point, and `pixels`, two per point). When any is split, `output` becomes the refined
+  /// mesh: the input points then the new ones (with point data interpolated from their
+  /// triangle's vertices), cells in the input's order with each split triangle's pieces in its
+  /// place (with its cell data); `added` holds the new points' projections. Returns the number of
+  /// triangles split; 0 leaves `output` and `added` as they are.
+  static vtkIdType Refine(vtkPolyData* input, const catar::Projector& projector,
+    const catar::TessellationOptions& options, const unsigned char* status, const double* pixels,
+    catar::Tessellation& added, vtkPolyData* output);
+};
+
+#endif

@@ -1,0 +1,199 @@
+// Per-frame tessellation (Module/ImageTessellation.h) against the exact projection: every point
+// of an input triangle that the camera sees lands inside the drawn pieces (to the tolerances),
+// every piece is seen, the pieces' edges bend no more than the tolerance, new points lie where
+// their barycentric weights say.
+#include "EdgeBend.h"
+#include "ImageTessellation.h"
+#include "Projector.h"
+#include "TestCameras.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <vector>
+
+using namespace catar;
+
+namespace
+{
+// Distance from p to the 2D triangle (a, b, c): 0 inside.
+double DistanceToTriangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c)
+{
+  auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const double d1 = cross(b - a, p - a), d2 = cross(c - b, p - b), d3 = cross(a - c, p - c);
+  const bool neg = d1 < 0 || d2 < 0 || d3<0, pos = d1> 0 || d2 > 0 || d3 > 0;
+  if (!(neg && pos))
+  {
+    return 0.0;
+  }
+  return std::min(
+    { DistanceToSegment(p, a, b), DistanceToSegment(p, b, c), DistanceToSegment(p, c, a) });
+}
+
+struct Pieces
+{
+  Tessellation out;
+  std::size_t pieces = 0;
+  TriangleFate fate = TriangleFate::Keep;
+};
+
+Pieces TessellateOne(
+  const Projector& proj, const std::array<Vec3, 3>& world, const TessellationOptions& options)
+{
+  Pieces r;
+  std::array<ProjectedPoint, 3> q;
+  for (int i = 0; i < 3; ++i)
+  {
+    q[i] = proj.ProjectWorld(world[i]);
+  }
+  r.fate = TriangleFateOf(proj, world, q, options);
+  if (r.fate == TriangleFate::Tessellate)
+  {
+    r.pieces = TessellateTriangle(proj, 7, { { 0, 1, 2 } }, world, q, 3, options, r.out);
+  }
+  return r;
+}
+
+// The pixel of a piece's point id (0-2: the input triangle's corners).
+Vec2 PixelOf(const Pieces& r, const std::array<ProjectedPoint, 3>& corners, std::int64_t id)
+{
+  return id < 3 ? corners[id].pixel : r.out.points[id - 3].projected.pixel;
+}
+} // namespace
+
+// A large triangle across the sphere's limb (one corner behind the mirror, hidden): every seen
+// point of it is inside the pieces, to the two tolerances; every piece's corners are seen; the
+// pieces' edges bend no more than the bend tolerance.
+TEST(ImageTessellation, ATriangleAcrossTheBoundaryIsDrawnUpToTheTolerance)
+{
+  const CameraModel model = catar_test::DemoCameraModel();
+  const Projector proj(model);
+  const std::array<Vec3, 3> camera = { { Vec3(0.01, 0.005, 0.45), Vec3(0.35, -0.05, 0.02),
+    Vec3(-0.1, 0.3, -0.05) } };
+  std::array<Vec3, 3> world;
+  std::array<ProjectedPoint, 3> corners;
+  for (int i = 0; i < 3; ++i)
+  {
+    world[i] = model.CameraToWorld(camera[i]);
+    corners[i] = proj.ProjectWorld(world[i]);
+  }
+  ASSERT_FALSE(HasProjection(corners[0].status)) << "behind the mirror";
+  ASSERT_TRUE(HasProjection(corners[1].status));
+  ASSERT_TRUE(HasProjection(corners[2].status));
+  for (const double tolerance : { 1.0, 0.25 })
+  {
+    TessellationOptions options;
+    options.boundaryTolerance = tolerance;
+    options.bendTolerance = tolerance;
+    const Pieces r = TessellateOne(proj, world, options);
+    ASSERT_EQ(r.fate, TriangleFate::Tessellate);
+    ASSERT_GT(r.pieces, 1u);
+    // Pieces: corners seen, weights give the world point, edges bend within the tolerance.
+    double worstBend = 0.0;
+    for (const TessellatedTriangle& t : r.out.triangles)
+    {
+      EXPECT_EQ(t.cell, 7);
+      for (int i = 0; i < 3; ++i)
+      {
+        const std::int64_t a = t.points[i], b = t.points[(i + 1) % 3];
+        const Vec3 wa = a < 3 ? world[a] : r.out.points[a - 3].world;
+        const Vec3 wb = b < 3 ? world[b] : r.out.points[b - 3].world;
+        const ProjectedPoint mid = proj.ProjectWorld(0.5 * (wa + wb));
+        if (HasProjection(mid.status))
+        {
+          worstBend = std::max(worstBend,
+            DistanceToSegment(mid.pixel, PixelOf(r, corners, a), PixelOf(r, corners, b)));
+        }
+      }
+    }
+    for (const TessellatedPoint& p : r.out.points)
+    {
+      EXPECT_TRUE(HasProjection(p.projected.status));
+      Vec3 w = Vec3::Zero();
+      for (int i = 0; i < 3; ++i)
+      {
+        w += p.weights[i] * world[p.parents[i]];
+      }
+      EXPECT_LT((w - p.world).norm(), 1e-12);
+    }
+    // Every seen point of the triangle inside the pieces.
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int seen = 0;
+    double worst = 0.0;
+    for (int k = 0; k < 20000; ++k)
+    {
+      double s = u(rng), t = u(rng);
+      if (s + t > 1.0)
+      {
+        s = 1.0 - s;
+        t = 1.0 - t;
+      }
+      const Vec3 p = world[0] + s * (world[1] - world[0]) + t * (world[2] - world[0]);
+      const ProjectedPoint q = proj.ProjectWorld(p);
+      if (!HasProjection(q.status))
+      {
+        continue;
+      }
+      ++seen;
+      double d = 1e300;
+      for (const TessellatedTriangle& tri : r.out.triangles)
+      {
+        d = std::min(d,
+          DistanceToTriangle(q.pixel, PixelOf(r, corners, tri.points[0]),
+            PixelOf(r, corners, tri.points[1]), PixelOf(r, corners, tri.points[2])));
+      }
+      worst = std::max(worst, d);
+    }
+    std::cout << "[ tessel.  ] tolerance " << tolerance << " px: " << r.pieces << " pieces, "
+              << r.out.points.size() << " new points; " << seen << " seen samples, the farthest "
+              << worst << " px from the pieces; worst edge bend " << worstBend << " px"
+              << std::endl;
+    EXPECT_GT(seen, 1000);
+    EXPECT_LE(worstBend, tolerance);
+    EXPECT_LE(worst, 2.0 * tolerance);
+  }
+}
+
+// Seen whole, within the bend tolerance: kept. Unseen everywhere: dropped. Crossing the boundary
+// with boundary tessellation off: dropped (the old behaviour).
+TEST(ImageTessellation, FatesOfTriangles)
+{
+  const CameraModel model = catar_test::DemoCameraModel();
+  const Projector proj(model);
+  auto world = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    return std::array<Vec3, 3>{ { model.CameraToWorld(a), model.CameraToWorld(b),
+      model.CameraToWorld(c) } };
+  };
+  TessellationOptions options;
+  options.bendTolerance = 0.5;
+  // A small triangle beside the camera.
+  EXPECT_EQ(TessellateOne(
+              proj, world(Vec3(0.2, 0.0, 0.0), Vec3(0.21, 0.0, 0.0), Vec3(0.2, 0.01, 0.0)), options)
+              .fate,
+    TriangleFate::Keep);
+  // Behind the mirror, all of it.
+  EXPECT_EQ(TessellateOne(
+              proj, world(Vec3(0.0, 0.0, 0.5), Vec3(0.01, 0.0, 0.5), Vec3(0.0, 0.01, 0.5)), options)
+              .fate,
+    TriangleFate::Drop);
+  // A large triangle whose edges bend: tessellated, its pieces within the tolerance.
+  const Pieces bent = TessellateOne(
+    proj, world(Vec3(0.4, 0.0, -0.1), Vec3(0.0, 0.4, -0.1), Vec3(-0.4, -0.2, -0.1)), options);
+  EXPECT_EQ(bent.fate, TriangleFate::Tessellate);
+  EXPECT_GT(bent.pieces, 4u);
+  options.bendTolerance = 0.0;
+  EXPECT_EQ(TessellateOne(proj,
+              world(Vec3(0.4, 0.0, -0.1), Vec3(0.0, 0.4, -0.1), Vec3(-0.4, -0.2, -0.1)), options)
+              .fate,
+    TriangleFate::Keep);
+  options.boundaryTolerance = 0.0;
+  EXPECT_EQ(
+    TessellateOne(proj,
+      world(Vec3(0.01, 0.005, 0.45), Vec3(0.35, -0.05, 0.02), Vec3(-0.1, 0.3, -0.05)), options)
+      .fate,
+    TriangleFate::Drop);
+}
