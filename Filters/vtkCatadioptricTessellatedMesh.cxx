@@ -14,6 +14,8 @@
 namespace
 {
 constexpr vtkIdType kGrain = 1024;
+// The most pieces one execution makes (all split triangles together).
+constexpr std::size_t kMaxPieces = std::size_t(1) << 22;
 
 // The triangle's corners: world points and projections (status and pixel; the rest is not read).
 void Corners(vtkPoints* points, const unsigned char* status, const double* pixels,
@@ -94,7 +96,12 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   {
     return 0;
   }
-  // The pieces, a tessellation per chosen triangle (in parallel), then numbered in order.
+  // The pieces, a tessellation per chosen triangle (in parallel), then numbered in order; at most
+  // kMaxPieces in all (a tiny tolerance stops there rather than exhausting memory).
+  catar::TessellationOptions bounded = options;
+  bounded.maxPiecesPerTriangle = static_cast<int>(std::max<std::size_t>(4,
+    std::min<std::size_t>(
+      static_cast<std::size_t>(options.maxPiecesPerTriangle), kMaxPieces / chosen.size())));
   std::vector<catar::Tessellation> pieces(chosen.size());
   vtkCatadioptricParallel::For(
     0, static_cast<vtkIdType>(chosen.size()), 1, [&](vtkIdType begin, vtkIdType end) {
@@ -108,7 +115,7 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
         Corners(points, status, pixels, v, world, projected);
         // Ids local to this tessellation, renumbered below.
         catar::TessellateTriangle(projector, chosen[k], { { v[0], v[1], v[2] } }, world, projected,
-          nPoints, options, pieces[k]);
+          nPoints, bounded, pieces[k]);
       }
     });
   added.points.clear();

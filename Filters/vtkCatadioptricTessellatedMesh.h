@@ -24,7 +24,8 @@ public:
   /// input point, and `pixels`, two per point). When any is split, `output` becomes the refined
   /// mesh: the input points then the new ones (with point data interpolated from their
   /// triangle's vertices), cells in the input's order with each split triangle's pieces in its
-  /// place (with its cell data); `added` holds the new points' projections. Returns the number of
+  /// place (with its cell data); `added` holds the new points' projections. At most 2^22 pieces
+  /// are made in all (each split triangle's share of that bounds its depth). Returns the number of
   /// triangles split; 0 leaves `output` and `added` as they are.
   static vtkIdType Refine(vtkPolyData* input, const catar::Projector& projector,
     const catar::TessellationOptions& options, const unsigned char* status, const double* pixels,
