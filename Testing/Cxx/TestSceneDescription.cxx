@@ -126,6 +126,12 @@ TEST(SceneDescription, ErrorsNameTheKey)
     { "solver: magic", "solver" },
     { "background: { type: video }", "background" },
     { "objects: { type: box }", "sequence" },
+    { "edges: { boundary_tolerance: -1 }", "edges" },
+    { "edges: { boundary: 1 }", "boundary" },
+    { "edges: 0.5", "edges" },
+    { "adaptive: { pixel_tolerance: nan }", "pixel_tolerance" },
+    { "adaptive: { pixel_tolerance: -2 }", "edges: tolerances" },
+    { "adaptive: { tolerance: 1 }", "tolerance" },
   };
   for (const Case& c : cases)
   {
@@ -140,6 +146,26 @@ TEST(SceneDescription, ErrorsNameTheKey)
   std::string error;
   EXPECT_FALSE(ParseScene("%YAML:1.0\n---\nobjects: []\n", "", s, error));
   EXPECT_NE(error.find("camera"), std::string::npos);
+}
+
+// `edges` and `adaptive` set the projection's per-frame tessellation tolerances.
+TEST(SceneDescription, EdgesAndAdaptive)
+{
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(ParseScene(std::string(kCamera), "", s, error)) << error;
+  EXPECT_EQ(s.boundaryTolerance, 0.25);
+  EXPECT_EQ(s.adaptiveTolerance, 0.0);
+  ASSERT_TRUE(
+    ParseScene(std::string(kCamera) + "edges: { boundary_tolerance: 0, adaptive_tolerance: 0.5 }\n",
+      "", s, error))
+    << error;
+  EXPECT_EQ(s.boundaryTolerance, 0.0);
+  EXPECT_EQ(s.adaptiveTolerance, 0.5);
+  ASSERT_TRUE(
+    ParseScene(std::string(kCamera) + "adaptive: { pixel_tolerance: 0.3 }\n", "", s, error))
+    << error;
+  EXPECT_EQ(s.adaptiveTolerance, 0.3);
 }
 
 TEST(SceneDescription, CalibrationFileRelativeToTheScene)
