@@ -7,6 +7,8 @@
 #include "SphereMirror.h"
 #include "TestCameras.h"
 
+#include "TestPrograms.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -446,31 +448,11 @@ TEST(MirrorOutline, BadInputsAreRefused)
 
 namespace
 {
-struct ProgramRun
-{
-  int status = -1;
-  std::string output;
-};
+using catar_test::ProgramRun;
 
 ProgramRun RunOutlineProgram(const std::string& arguments)
 {
-  ProgramRun run;
-  const std::string command =
-    std::string("'") + CATAR_MIRROR_OUTLINE_PROGRAM + "' " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-  {
-    return run;
-  }
-  std::array<char, 4096> buffer;
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-  {
-    run.output.append(buffer.data(), n);
-  }
-  const int status = pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+  return catar_test::RunProgram(CATAR_MIRROR_OUTLINE_PROGRAM, arguments);
 }
 
 std::string TempPath(const std::string& name)
