@@ -1,6 +1,7 @@
 #include "Markers.h"
 
 #include "ConfigReader.h"
+#include "Trajectory.h"
 
 #include <Eigen/Geometry>
 #include <opencv2/aruco.hpp>
@@ -70,11 +71,7 @@ Vec3 Vec3Of(const fs::Node& node, const std::string& key, const Vec3& fallback)
 
 std::array<Vec3, 4> BoardMarker::Corners() const
 {
-  const double k = 3.14159265358979323846 / 180.0;
-  const Mat3 R = (Eigen::AngleAxisd(k * this->rotate.z(), Vec3::UnitZ()) *
-    Eigen::AngleAxisd(k * this->rotate.y(), Vec3::UnitY()) *
-    Eigen::AngleAxisd(k * this->rotate.x(), Vec3::UnitX()))
-                   .toRotationMatrix();
+  const Mat3 R = RotationFromDegrees(this->rotate).toRotationMatrix();
   const double h = 0.5 * this->size;
   const Vec3 local[4] = { Vec3(-h, h, 0), Vec3(h, h, 0), Vec3(h, -h, 0), Vec3(-h, -h, 0) };
   std::array<Vec3, 4> corners;

@@ -132,16 +132,6 @@ SceneRemesh ReadRemesh(const fs::Node& node, const SceneRemesh& fallback)
   return r;
 }
 
-// The rotation of an object's `rotate` (degrees about x, then y, then z, as the object's
-// transform applies them): Rz Ry Rx.
-Eigen::Quaterniond EulerRotation(const Vec3& degrees)
-{
-  const double k = 3.14159265358979323846 / 180.0;
-  return Eigen::Quaterniond(Eigen::AngleAxisd(k * degrees.z(), Vec3::UnitZ()) *
-    Eigen::AngleAxisd(k * degrees.y(), Vec3::UnitY()) *
-    Eigen::AngleAxisd(k * degrees.x(), Vec3::UnitX()));
-}
-
 // `keyframes`: a sequence of maps with a `time` and the given keys; calls read(map, time) for
 // each, in order, after checking that the times rise.
 template<typename Read>
@@ -319,7 +309,7 @@ SceneObject ReadObject(
         Keyframe f;
         f.time = time;
         f.position = Vec3Or(k, "translate", o.translate);
-        f.rotation = EulerRotation(Vec3Or(k, "rotate", o.rotate));
+        f.rotation = RotationFromDegrees(Vec3Or(k, "rotate", o.rotate));
         if (!f.position.allFinite() || !f.rotation.coeffs().allFinite())
         {
           throw fs::ParseError("'translate' and 'rotate' must be finite");

@@ -311,6 +311,14 @@ void AppendPose(std::string& out, const TimedPose& pose, bool tum)
 }
 } // namespace
 
+Eigen::Quaterniond RotationFromDegrees(const Vec3& degrees)
+{
+  const double k = 3.14159265358979323846 / 180.0;
+  return Eigen::Quaterniond(Eigen::AngleAxisd(k * degrees.z(), Vec3::UnitZ()) *
+    Eigen::AngleAxisd(k * degrees.y(), Vec3::UnitY()) *
+    Eigen::AngleAxisd(k * degrees.x(), Vec3::UnitX()));
+}
+
 Eigen::Quaterniond Slerp(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b, double s)
 {
   // The short way: b or -b, whichever is nearer a on the unit sphere of quaternions.

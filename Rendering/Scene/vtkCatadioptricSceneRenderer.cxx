@@ -128,11 +128,7 @@ void SetPose(vtkCatadioptricCamera* camera, const catar::Mat4& pose)
 
 catar::Mat4 Placement(const catar::SceneObject& o)
 {
-  const double k = 3.14159265358979323846 / 180.0;
-  const Eigen::Quaterniond r(Eigen::AngleAxisd(k * o.rotate.z(), catar::Vec3::UnitZ()) *
-    Eigen::AngleAxisd(k * o.rotate.y(), catar::Vec3::UnitY()) *
-    Eigen::AngleAxisd(k * o.rotate.x(), catar::Vec3::UnitX()));
-  return Placement(o.translate, r);
+  return Placement(o.translate, catar::RotationFromDegrees(o.rotate));
 }
 
 bool SameMaterial(const catar::SceneObject& a, const catar::SceneObject& b)
