@@ -875,4 +875,27 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
   return rasterizeTriangle(
     target, v0, v1, v2, PixelRect{ 0, 0, target.width, target.height }, depth, texture, ids, id);
 }
+
+bool rasterizeSamples(const ImageView& block, const SnappedTriangle& t, int x, int y, int samples,
+  const DepthView* depth, const TextureView* texture, RasterResult& result)
+{
+  constexpr std::int64_t kReach = std::int64_t(1) << (18 + kRasterSubPixelBits);
+  const std::int64_t ox = static_cast<std::int64_t>(x) * kOne;
+  const std::int64_t oy = static_cast<std::int64_t>(y) * kOne;
+  SnappedTriangle local = t;
+  for (int k = 0; k < 3; ++k)
+  {
+    const std::int64_t dx = t.x[k] - ox, dy = t.y[k] - oy;
+    if (dx > kReach || dx < -kReach || dy > kReach || dy < -kReach)
+    {
+      return false;
+    }
+    // The sample grid's coordinates relative to the pixel's first sample (S x, S y).
+    local.x[k] = SampleGridPosition(static_cast<std::int32_t>(dx), samples);
+    local.y[k] = SampleGridPosition(static_cast<std::int32_t>(dy), samples);
+  }
+  result = rasterizeSnappedTriangle(
+    block, local, PixelRect{ 0, 0, samples, samples }, depth, texture, nullptr, 0);
+  return true;
+}
 }

@@ -258,6 +258,36 @@ PixelRect coveredPixelBounds(
 RasterResult rasterizeSnappedTriangle(const ImageView& target, const SnappedTriangle& t,
   const PixelRect& clip, const DepthView* depth = nullptr, const TextureView* texture = nullptr,
   const IdView* ids = nullptr, RasterId id = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Edge samples (anti-aliasing). Pixel (x, y) is divided into S x S sub-pixels; sample (i, j),
+// i, j in [0, S), is the centre of sub-pixel (i, j): the point (x - 0.5 + (i + 0.5) / S,
+// y - 0.5 + (j + 0.5) / S). On the sample grid -- coordinates f = S (c + 0.5) - 0.5 -- the samples
+// are the integer points (S x + i, S y + j), so drawing a triangle on the sample grid with the
+// rules above (coverage of a "pixel centre", top-left rule, attribute planes) draws it at the
+// samples.
+
+/// Most samples per pixel side.
+constexpr int kMaxEdgeSamples = 4;
+
+/// A coordinate snapped to the 1/256 pixel grid (snapToGrid), on the sample grid of `samples`
+/// (1 to kMaxEdgeSamples) per side, in 1/256 sample units: S X + 128 (S - 1), exact. From inside
+/// the guard band the result fits in 31 bits.
+inline std::int32_t SampleGridPosition(std::int32_t snapped, int samples)
+{
+  return samples * snapped + (1 << (kRasterSubPixelBits - 1)) * (samples - 1);
+}
+
+/// Draws t at the S x S samples of pixel (x, y) -- S = samples, 2 to kMaxEdgeSamples -- into
+/// block, an S x S image whose pixel (i, j) is sample (i, j): the samples rasterizeSnappedTriangle
+/// covers on an image S times larger in each direction with the vertices moved to the sample grid
+/// (SampleGridPosition), then cut to the pixel's samples (the same coverage, exactly; colours,
+/// depths and texture coordinates to the last bit of their planes). depth, if non-null, is the S x
+/// S depth block (tested and written as rasterizeSnappedTriangle does). False, drawing nothing,
+/// when a vertex is more than 2^18 pixels from the pixel (the rasteriser's fixed point would not
+/// hold the sample grid's coordinates); the result is otherwise Drawn, Empty or Degenerate.
+bool rasterizeSamples(const ImageView& block, const SnappedTriangle& t, int x, int y, int samples,
+  const DepthView* depth, const TextureView* texture, RasterResult& result);
 }
 
 #endif

@@ -6,6 +6,7 @@
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
+#include "vtkCatadioptricEdgeSamples.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
@@ -113,6 +114,7 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
 
 vtkCatadioptricCompositor::vtkCatadioptricCompositor()
   : Bins(new vtkCatadioptricTriangleBins)
+  , Edges(new vtkCatadioptricEdgeSamples)
 {
 }
 
@@ -147,6 +149,8 @@ int vtkCatadioptricCompositor::RequestData(
   const bool wantIds = this->OutputVisibleTriangle;
   this->NumberOfDrawnTriangles = 0;
   this->NumberOfSkippedTriangles = 0;
+  this->NumberOfEdgePixels = 0;
+  const int samples = this->Antialias ? this->AntialiasSamples : 1;
 
   // Image size: from the meshes' cameras, which must agree with each other and with the frame.
   int width = 0;
@@ -351,7 +355,8 @@ int vtkCatadioptricCompositor::RequestData(
   options.Opacity = static_cast<float>(this->Opacity);
   options.MergeByDepth = nMeshes > 1;
   options.DepthBuffer = depthMode;
-  options.Ids = wantIds;
+  options.Ids = wantIds || samples > 1; // edges are found on the ids
+  options.Samples = samples;
   std::string binError;
   if (!this->Bins->Build(meshes, options, binError))
   {
@@ -396,7 +401,37 @@ int vtkCatadioptricCompositor::RequestData(
     this->DepthBuffer.resize(static_cast<size_t>(nPixels));
     depth = this->DepthBuffer.data();
   }
+  if (samples > 1 && !ids)
+  {
+    this->EdgeIds.resize(static_cast<size_t>(nPixels));
+    ids = this->EdgeIds.data();
+  }
   DrawBands(view, *this->Bins, textures, background, depth, ids);
+  if (samples > 1)
+  {
+    catar::IdView idView;
+    idView.data = ids + static_cast<std::ptrdiff_t>(width) * (height - 1); // top row (y = 0)
+    idView.width = width;
+    idView.height = height;
+    idView.rowStride = -static_cast<std::ptrdiff_t>(width);
+    const double* color = this->BackgroundColor;
+    this->Edges->Draw(
+      view, idView, *this->Bins, textures,
+      [&](int x, int y, std::uint8_t rgba[4]) {
+        if (frameData)
+        {
+          const vtkIdType i = static_cast<vtkIdType>(height - 1 - y) * width + x; // VTK order
+          vtkCatadioptricImageSupport::CopyFramePixels(
+            frameData + i * frameComponents, frameComponents, 0, 1, rgba);
+        }
+        else
+        {
+          vtkCatadioptricImageSupport::FillColorPixels(color, 0, 1, rgba);
+        }
+      },
+      depthMode);
+    this->NumberOfEdgePixels = this->Edges->GetNumberOfEdgePixels();
+  }
   if (!idCopy.empty())
   {
     std::copy(idCopy.begin(), idCopy.end(), visibleTriangle->GetPointer(0));
@@ -414,4 +449,6 @@ void vtkCatadioptricCompositor::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Visibility: " << this->GetVisibilityAsString() << "\n";
+  os << indent << "Antialias: " << this->Antialias << " (" << this->AntialiasSamples << " x "
+     << this->AntialiasSamples << " samples)\n";
 }

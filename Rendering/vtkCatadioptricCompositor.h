@@ -48,6 +48,11 @@
  * above is multiplied by the bilinearly sampled texel (u, v in [0,1], (0,0) at the image's
  * bottom-left, VTK's convention).
  *
+ * Anti-aliasing (Antialias, off by default): edge pixels -- silhouettes against the frame and
+ * edges where one surface passes in front of another -- get the mean of AntialiasSamples x
+ * AntialiasSamples samples, drawn with the same rules; interior pixels keep their centre sample
+ * (see vtkCatadioptricEdgeSamples).
+ *
  * Without a frame the output is BackgroundColor, of ImageSize if set, else of the camera's image
  * size (from the meshes' field data).
  */
@@ -61,6 +66,7 @@
 #include <memory> // for std::unique_ptr
 #include <vector> // for std::vector
 
+class vtkCatadioptricEdgeSamples;
 class vtkCatadioptricTriangleBins;
 class vtkTypeInt64Array;
 
@@ -90,10 +96,22 @@ public:
   ///@}
 
   ///@{
+  /// Antialias (default off): redraw the edge pixels from AntialiasSamples x AntialiasSamples
+  /// samples each (2 to 4, default 4) and give them the samples' mean.
+  vtkSetMacro(Antialias, bool);
+  vtkGetMacro(Antialias, bool);
+  vtkBooleanMacro(Antialias, bool);
+  vtkSetClampMacro(AntialiasSamples, int, 2, 4);
+  vtkGetMacro(AntialiasSamples, int);
+  ///@}
+
+  ///@{
   /// Statistics of the last execution: triangles sent to the rasteriser, and triangles skipped
   /// because their cell was not visible.
   vtkGetMacro(NumberOfDrawnTriangles, vtkIdType);
   vtkGetMacro(NumberOfSkippedTriangles, vtkIdType);
+  /// Pixels redrawn from samples (Antialias).
+  vtkGetMacro(NumberOfEdgePixels, vtkIdType);
   ///@}
 
 protected:
@@ -107,6 +125,9 @@ protected:
   void ImageSizeWithoutFrame(vtkInformationVector** inputVector, int size[2]) override;
 
   int Visibility = PAINTER;
+  bool Antialias = false;
+  int AntialiasSamples = 4;
+  vtkIdType NumberOfEdgePixels = 0;
   int LastSize[2] = { 0, 0 };
   vtkIdType NumberOfDrawnTriangles = 0;
   vtkIdType NumberOfSkippedTriangles = 0;
@@ -116,6 +137,9 @@ protected:
   vtkSmartPointer<vtkTypeInt64Array> OutputIds;
   // The triangles of an execution, binned into bands; scratch kept between executions.
   std::unique_ptr<vtkCatadioptricTriangleBins> Bins;
+  // Antialias: the edge pixels' samples, and the id buffer when OutputVisibleTriangle is off.
+  std::unique_ptr<vtkCatadioptricEdgeSamples> Edges;
+  std::vector<long long> EdgeIds;
 
 private:
   vtkCatadioptricCompositor(const vtkCatadioptricCompositor&) = delete;

@@ -85,6 +85,11 @@ public:
     bool MergeByDepth = false; ///< one far-to-near order across meshes (stable: CentroidDepth)
     bool DepthBuffer = false;  ///< per-vertex depths (PathLength); opaque triangles first
     bool Ids = false;          ///< per-triangle ids
+    /// Samples per pixel side of anti-aliased edges (1: none, at most 4). Above 1 a triangle is
+    /// kept when it covers one of the S x S sample points of a pixel (the centres of the pixel's
+    /// S x S sub-pixels), not only when it covers a pixel centre, so that the edge samples see the
+    /// triangles smaller than a pixel.
+    int Samples = 1;
   };
 
   /// A triangle's drawing state besides its vertices.
@@ -118,6 +123,10 @@ public:
   /// The bands from most to fewest triangles: drawing them in this order balances the threads
   /// (the bands of a small object come first and are shared out before the empty ones).
   int GetBandByLoad(int i) const { return this->BandsByLoad[i]; }
+  /// Number of triangles binned into band b.
+  std::uint32_t GetBandLoad(int b) const { return this->BandLoads[b]; }
+  /// Samples per pixel side the triangles were kept for (Options::Samples, clamped).
+  int GetSamples() const { return this->Opts.Samples; }
 
   /// Calls f(ref) for the triangles of band b in drawing order (ref is for Get()).
   template<typename F>

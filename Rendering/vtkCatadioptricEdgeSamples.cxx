@@ -1,0 +1,259 @@
+#include "vtkCatadioptricEdgeSamples.h"
+
+#include "vtkCatadioptricParallel.h"
+#include "vtkCatadioptricTriangleBins.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <limits>
+
+namespace
+{
+// Whether pixels p and q (RGBA) that show triangles ip and iq make an edge.
+bool IsEdge(catar::RasterId ip, catar::RasterId iq, const std::uint8_t* p, const std::uint8_t* q)
+{
+  if (ip == iq)
+  {
+    return false;
+  }
+  if (ip < 0 || iq < 0)
+  {
+    return true;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    if (std::abs(int(p[k]) - int(q[k])) > vtkCatadioptricEdgeSamples::ContrastThreshold)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The pixels of band `rect` whose area a triangle's bounding box meets (a sample lies inside its
+// pixel), inclusive bounds; empty when x0 > x1 or y0 > y1.
+struct PixelBox
+{
+  int x0, y0, x1, y1;
+};
+PixelBox Box(const catar::SnappedTriangle& t, const catar::PixelRect& rect, int width)
+{
+  constexpr int kHalf = 1 << (catar::kRasterSubPixelBits - 1);
+  const auto pixel = [](std::int32_t c) {
+    return static_cast<int>((static_cast<std::int64_t>(c) + kHalf) >> catar::kRasterSubPixelBits);
+  };
+  return PixelBox{ std::max(0, pixel(std::min({ t.x[0], t.x[1], t.x[2] }))),
+    std::max(rect.y0, pixel(std::min({ t.y[0], t.y[1], t.y[2] }))),
+    std::min(width - 1, pixel(std::max({ t.x[0], t.x[1], t.x[2] }))),
+    std::min(rect.y1 - 1, pixel(std::max({ t.y[0], t.y[1], t.y[2] }))) };
+}
+} // namespace
+
+void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar::IdView& ids,
+  const vtkCatadioptricTriangleBins& bins, const std::vector<catar::TextureView>& textures,
+  const Background& background, bool depth)
+{
+  const int width = view.width;
+  const int height = view.height;
+  const int nBands = bins.GetNumberOfBands();
+  const int samples = bins.GetSamples();
+  const int perPixel = samples * samples;
+  this->Bands.resize(static_cast<size_t>(nBands));
+  this->NumberOfEdgePixels = 0;
+  this->NumberOfUnsampled = 0;
+  if (samples < 2)
+  {
+    return;
+  }
+
+  // The edge pixels of the bands that hold triangles (a pixel of another band has no sample any
+  // triangle covers). Read-only on the image: every pixel looks at its four neighbours.
+  vtkCatadioptricParallel::ForEachIndex(0, nBands, [&](vtkIdType i) {
+    const int b = bins.GetBandByLoad(static_cast<int>(i));
+    Band& band = this->Bands[b];
+    band.Columns.clear();
+    band.Rows.clear();
+    if (bins.GetBandLoad(b) == 0)
+    {
+      return;
+    }
+    const catar::PixelRect rect = bins.GetBand(b);
+    band.Mask.assign(static_cast<size_t>(width) * (rect.y1 - rect.y0), 0);
+    for (int y = rect.y0; y < rect.y1; ++y)
+    {
+      std::uint8_t* mask = band.Mask.data() + static_cast<size_t>(width) * (y - rect.y0);
+      const catar::RasterId* row = ids.at(0, y);
+      const catar::RasterId* up = y > 0 ? ids.at(0, y - 1) : nullptr;
+      const catar::RasterId* down = y + 1 < height ? ids.at(0, y + 1) : nullptr;
+      for (int x = 0; x < width; ++x)
+      {
+        const catar::RasterId id = row[x];
+        const int xa = x > 0 ? x - 1 : x, xb = x + 1 < width ? x + 1 : x;
+        bool same = row[xa] == id && row[xb] == id;
+        for (const catar::RasterId* r : { up, down })
+        {
+          same = same && (!r || (r[xa] == id && r[x] == id && r[xb] == id));
+        }
+        if (same)
+        {
+          continue;
+        }
+        // The eight neighbours: a corner of an object can reach into a pixel diagonally.
+        const std::uint8_t* p = view.pixel(x, y);
+        bool edge = false;
+        for (int dy = -1; dy <= 1 && !edge; ++dy)
+        {
+          const catar::RasterId* r = dy < 0 ? up : dy > 0 ? down : row;
+          for (int nx = xa; r && nx <= xb && !edge; ++nx)
+          {
+            edge = IsEdge(id, r[nx], p, view.pixel(nx, y + dy));
+          }
+        }
+        mask[x] = edge ? 1 : 0;
+      }
+    }
+    // A pixel whose centre shows the frame and one of whose samples a triangle covers: the tips
+    // and slivers that reach into a pixel without covering its centre nor any neighbour's.
+    catar::SnappedTriangle t;
+    vtkCatadioptricTriangleBins::Info info;
+    bins.ForEachTriangle(b, [&](std::uint32_t ref) {
+      bins.Get(ref, t, info);
+      const PixelBox box = Box(t, rect, width);
+      const std::int32_t fx[3] = { catar::SampleGridPosition(t.x[0], samples),
+        catar::SampleGridPosition(t.x[1], samples), catar::SampleGridPosition(t.x[2], samples) };
+      const std::int32_t fy[3] = { catar::SampleGridPosition(t.y[0], samples),
+        catar::SampleGridPosition(t.y[1], samples), catar::SampleGridPosition(t.y[2], samples) };
+      for (int y = box.y0; y <= box.y1; ++y)
+      {
+        std::uint8_t* mask = band.Mask.data() + static_cast<size_t>(width) * (y - rect.y0);
+        const catar::RasterId* row = ids.at(0, y);
+        for (int x = box.x0; x <= box.x1; ++x)
+        {
+          if (mask[x] || row[x] >= 0)
+          {
+            continue;
+          }
+          // coveredPixelBounds is exact for up to 2 x 2 samples: the block, 2 x 2 at a time.
+          for (int j = 0; j < samples && !mask[x]; j += 2)
+          {
+            for (int i = 0; i < samples && !mask[x]; i += 2)
+            {
+              const catar::PixelRect block{ samples * x + i, samples * y + j,
+                std::min(samples * x + i + 2, samples * x + samples),
+                std::min(samples * y + j + 2, samples * y + samples) };
+              const catar::PixelRect covered = catar::coveredPixelBounds(fx, fy, block);
+              mask[x] = covered.x0 < covered.x1 && covered.y0 < covered.y1 ? 1 : 0;
+            }
+          }
+        }
+      }
+    });
+    for (int y = rect.y0; y < rect.y1; ++y)
+    {
+      band.Rows.push_back(static_cast<int>(band.Columns.size()));
+      const std::uint8_t* mask = band.Mask.data() + static_cast<size_t>(width) * (y - rect.y0);
+      for (int x = 0; x < width; ++x)
+      {
+        if (mask[x])
+        {
+          band.Columns.push_back(x);
+        }
+      }
+    }
+    band.Rows.push_back(static_cast<int>(band.Columns.size()));
+  });
+
+  // The samples of each band's edge pixels, drawn from the band's triangles in drawing order,
+  // then their mean. Writes only the band's own pixels.
+  vtkCatadioptricParallel::ForEachIndex(0, nBands, [&](vtkIdType i) {
+    const int b = bins.GetBandByLoad(static_cast<int>(i));
+    Band& band = this->Bands[b];
+    const size_t n = band.Columns.size();
+    if (n == 0)
+    {
+      return;
+    }
+    const catar::PixelRect rect = bins.GetBand(b);
+    band.Samples.resize(n * perPixel * 4);
+    band.Skip.assign(n, 0);
+    if (depth)
+    {
+      band.Depths.assign(n * perPixel, std::numeric_limits<float>::infinity());
+    }
+    for (int r = 0; r + rect.y0 < rect.y1; ++r)
+    {
+      for (int e = band.Rows[r]; e < band.Rows[r + 1]; ++e)
+      {
+        std::uint8_t rgba[4];
+        background(band.Columns[e], rect.y0 + r, rgba);
+        std::uint8_t* s = band.Samples.data() + static_cast<size_t>(e) * perPixel * 4;
+        for (int k = 0; k < perPixel; ++k)
+        {
+          std::copy(rgba, rgba + 4, s + 4 * k);
+        }
+      }
+    }
+    catar::ImageView block;
+    block.width = samples;
+    block.height = samples;
+    block.rowStride = 4 * samples;
+    catar::DepthView blockDepth;
+    blockDepth.width = samples;
+    blockDepth.height = samples;
+    blockDepth.rowStride = samples;
+    catar::SnappedTriangle t;
+    vtkCatadioptricTriangleBins::Info info;
+    bins.ForEachTriangle(b, [&](std::uint32_t ref) {
+      bins.Get(ref, t, info);
+      const PixelBox box = Box(t, rect, width);
+      const catar::TextureView* texture = info.Texture >= 0 ? &textures[info.Texture] : nullptr;
+      blockDepth.write = info.Opaque;
+      for (int y = box.y0; y <= box.y1; ++y)
+      {
+        const int* first = band.Columns.data() + band.Rows[y - rect.y0];
+        const int* last = band.Columns.data() + band.Rows[y - rect.y0 + 1];
+        for (const int* c = std::lower_bound(first, last, box.x0); c != last && *c <= box.x1; ++c)
+        {
+          const size_t e = static_cast<size_t>(c - band.Columns.data());
+          block.data = band.Samples.data() + e * perPixel * 4;
+          blockDepth.data = depth ? band.Depths.data() + e * perPixel : nullptr;
+          catar::RasterResult result;
+          if (!catar::rasterizeSamples(
+                block, t, *c, y, samples, depth ? &blockDepth : nullptr, texture, result))
+          {
+            band.Skip[e] = 1;
+          }
+        }
+      }
+    });
+    for (int r = 0; r + rect.y0 < rect.y1; ++r)
+    {
+      for (int e = band.Rows[r]; e < band.Rows[r + 1]; ++e)
+      {
+        if (band.Skip[e])
+        {
+          continue;
+        }
+        const std::uint8_t* s = band.Samples.data() + static_cast<size_t>(e) * perPixel * 4;
+        std::uint8_t* out = view.pixel(band.Columns[e], rect.y0 + r);
+        for (int ch = 0; ch < 4; ++ch)
+        {
+          int sum = 0;
+          for (int k = 0; k < perPixel; ++k)
+          {
+            sum += s[4 * k + ch];
+          }
+          out[ch] = static_cast<std::uint8_t>((sum + perPixel / 2) / perPixel);
+        }
+      }
+    }
+  });
+  for (const Band& band : this->Bands)
+  {
+    this->NumberOfEdgePixels += static_cast<vtkIdType>(band.Columns.size());
+    if (!band.Columns.empty())
+    {
+      this->NumberOfUnsampled += std::count(band.Skip.begin(), band.Skip.end(), std::uint8_t(1));
+    }
+  }
+}
