@@ -29,6 +29,7 @@ void Usage(FILE* out)
 {
   std::fprintf(out,
     "usage: catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--markers BOARD]\n"
+    "                           [--adaptive P] [--antialias [S]]\n"
     "                           [--repeat N] [--target-area A | --pixel-tolerance P]\n"
     "                           [--print-demo-scene]\n"
     "\n"
@@ -44,7 +45,9 @@ void Usage(FILE* out)
     "per-stage summary follow. --markers BOARD estimates each frame's camera pose from the\n"
     "board's markers seen in the background (a video or image background; README \"Markers\").\n"
     "--adaptive P splits, every frame, the triangles whose edges bend more than P pixels\n"
-    "(README \"Edges\"; overrides the scene's 'edges').\n"
+    "(README \"Edges\"; overrides the scene's 'edges'). --antialias [S] redraws the edge\n"
+    "pixels from S x S samples each (S = 2, 3 or 4, default 4; README \"Rasterisation\";\n"
+    "overrides the scene's 'antialias'; --antialias 1 turns it off).\n"
     "\n"
     "--repeat N renders the frame N times and reports the per-frame stages of the last one.\n"
     "--target-area A remeshes every object to triangles of about A square metres;\n"
@@ -202,6 +205,7 @@ int main(int argc, char* argv[])
   double fps = 0.0;
   std::string markers;
   double adaptive = 0.0;
+  int antialias = 0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -246,6 +250,22 @@ int main(int argc, char* argv[])
       {
         std::fprintf(stderr, "catadioptric-render: --adaptive needs a positive number (pixels)\n");
         return 2;
+      }
+    }
+    else if (arg == "--antialias")
+    {
+      antialias = 4;
+      const std::string next = i + 1 < argc ? argv[i + 1] : "";
+      if (next.size() == 1 && next[0] >= '0' && next[0] <= '9')
+      {
+        antialias = next[0] - '0';
+        ++i;
+        if (antialias < 1 || antialias > 4)
+        {
+          std::fprintf(stderr,
+            "catadioptric-render: --antialias takes 2, 3 or 4 samples per pixel side (1: off)\n");
+          return 2;
+        }
       }
     }
     else if (arg == "--markers" && i + 1 < argc)
@@ -307,6 +327,7 @@ int main(int argc, char* argv[])
   renderer->SetRemeshPixelTolerance(pixelTolerance);
   renderer->SetMarkerBoardFileName(markers.empty() ? nullptr : markers.c_str());
   renderer->SetAdaptiveTolerance(adaptive);
+  renderer->SetAntialias(antialias);
   if (!renderer->LoadScene())
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());

@@ -66,6 +66,33 @@ Vec3 ColorOr(const fs::Node& parent, const std::string& key, const Vec3& fallbac
 
 // `remesh: none`, `remesh: { target_area: A }` or `remesh: { pixel_tolerance: P }` (plus
 // iterations, feature_angle), starting from `fallback`.
+// Key `adaptive: { pixel_tolerance: P }` (at the top or in an object): P, else fallback.
+double ReadAdaptive(const fs::Node& adaptive, double fallback)
+{
+  if (adaptive.empty() || adaptive.isNone())
+  {
+    return fallback;
+  }
+  if (!adaptive.isMap())
+  {
+    throw fs::ParseError("'adaptive' must be a map (pixel_tolerance)");
+  }
+  try
+  {
+    fs::CheckKeys(adaptive, { "pixel_tolerance" });
+  }
+  catch (const fs::ParseError& e)
+  {
+    throw fs::ParseError(std::string("adaptive: ") + e.what());
+  }
+  const double p = fs::Number(adaptive, "pixel_tolerance");
+  if (!(p >= 0.0 && p <= 1e6))
+  {
+    throw fs::ParseError("adaptive: pixel_tolerance must be pixels in [0, 1e6] (0: off)");
+  }
+  return p;
+}
+
 SceneRemesh ReadRemesh(const fs::Node& node, const SceneRemesh& fallback)
 {
   SceneRemesh r = fallback;
@@ -186,7 +213,8 @@ SceneObject ReadObject(
     fs::CheckKeys(node,
       { "name", "type", "file", "size", "radius", "tube_radius", "height", "resolution",
         "translate", "rotate", "scale", "color", "opacity", "face_colors", "pattern",
-        "pattern_size", "texture", "remesh", "material", "keyframes", "id", "dictionary" });
+        "pattern_size", "texture", "remesh", "adaptive", "material", "keyframes", "id",
+        "dictionary" });
     SceneObject o;
     o.type = fs::String(node, "type", "");
     o.file = fs::String(node, "file", "");
@@ -304,6 +332,7 @@ SceneObject ReadObject(
       }
     }
     o.remesh = ReadRemesh(node["remesh"], defaultRemesh);
+    o.adaptiveTolerance = ReadAdaptive(node["adaptive"], -1.0);
     ReadKeyframes(
       node["keyframes"], { "time", "translate", "rotate" }, [&o](const fs::Node& k, double time) {
         Keyframe f;
@@ -479,7 +508,8 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   }
   fs::CheckKeys(root,
     { "camera", "output", "solver", "cull_back_faces", "visibility", "edges", "adaptive",
-      "background", "lighting", "remesh", "objects", "trajectory", "sequence", "markers" });
+      "antialias", "background", "lighting", "remesh", "objects", "trajectory", "sequence",
+      "markers" });
   const fs::Node cam = root["camera"];
   if (cam.isString())
   {
@@ -571,29 +601,35 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     scene.boundaryTolerance = fs::Number(edges, "boundary_tolerance", scene.boundaryTolerance);
     scene.adaptiveTolerance = fs::Number(edges, "adaptive_tolerance", scene.adaptiveTolerance);
   }
-  const fs::Node adaptive = root["adaptive"];
-  if (!adaptive.empty() && !adaptive.isNone())
-  {
-    if (!adaptive.isMap())
-    {
-      throw fs::ParseError("'adaptive' must be a map (pixel_tolerance)");
-    }
-    try
-    {
-      fs::CheckKeys(adaptive, { "pixel_tolerance" });
-    }
-    catch (const fs::ParseError& e)
-    {
-      throw fs::ParseError(std::string("adaptive: ") + e.what());
-    }
-    scene.adaptiveTolerance = fs::Number(adaptive, "pixel_tolerance");
-  }
+  scene.adaptiveTolerance = ReadAdaptive(root["adaptive"], scene.adaptiveTolerance);
   for (const double t : { scene.boundaryTolerance, scene.adaptiveTolerance })
   {
     if (!(t >= 0.0 && t <= 1e6))
     {
       throw fs::ParseError("edges: tolerances must be pixels in [0, 1e6] (0: off)");
     }
+  }
+  const fs::Node antialias = root["antialias"];
+  if (antialias.isMap())
+  {
+    try
+    {
+      fs::CheckKeys(antialias, { "samples" });
+    }
+    catch (const fs::ParseError& e)
+    {
+      throw fs::ParseError(std::string("antialias: ") + e.what());
+    }
+    const double n = fs::Number(antialias, "samples");
+    if (!(n == 2 || n == 3 || n == 4))
+    {
+      throw fs::ParseError("antialias: samples (per pixel side) must be 2, 3 or 4");
+    }
+    scene.antialiasSamples = static_cast<int>(n);
+  }
+  else
+  {
+    scene.antialiasSamples = fs::Flag(root, "antialias", false) ? 4 : 0;
   }
   scene.visibility = fs::String(root, "visibility", scene.visibility);
   if (scene.visibility != "painter" && scene.visibility != "depth")

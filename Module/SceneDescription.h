@@ -73,6 +73,10 @@ struct SceneObject
   Vec3 specularColor = Vec3(1, 1, 1);
   /// Mesh preparation; the scene's `remesh` unless the object has its own.
   SceneRemesh remesh;
+  /// Key `adaptive: { pixel_tolerance: P }` in the object: its own per-frame adaptive
+  /// tessellation (vtkCatadioptricProjection's AdaptiveTolerance, pixels; 0 off); -1 (unset):
+  /// the scene's.
+  double adaptiveTolerance = -1.0;
   /// Key `keyframes`: the object's placement over time, a sequence of `{time, translate,
   /// rotate}` (a keyframe without translate or rotate keeps the object's own); positions are
   /// interpolated linearly, rotations by slerp, clamped before the first and after the last. The
@@ -164,9 +168,13 @@ struct SceneDescription
   bool cullBackFaces = false;
   /// Key `edges: { boundary_tolerance: B, adaptive_tolerance: A }` (pixels; defaults 0.25 and 0):
   /// vtkCatadioptricProjection's BoundaryTolerance and AdaptiveTolerance for every object (README
-  /// "Edges"). Key `adaptive: { pixel_tolerance: A }` is the same as adaptive_tolerance.
+  /// "Edges"). Key `adaptive: { pixel_tolerance: A }` is the same as adaptive_tolerance; an
+  /// object's own `adaptive` overrides it for that object.
   double boundaryTolerance = 0.25;
   double adaptiveTolerance = 0.0;
+  /// Key `antialias`: true (4 x 4 samples), false (default), or `{ samples: S }` (S = 2, 3 or 4
+  /// per pixel side): vtkCatadioptricCompositor's Antialias and AntialiasSamples. 0: off.
+  int antialiasSamples = 0;
   SceneBackground background;
   SceneLighting lighting;
   SceneRemesh remesh; ///< default of every object

@@ -93,10 +93,12 @@ std::string Layout(vtkPolyData* mesh)
 }
 
 // Whether object b can be drawn in one pipeline with object a: neither is textured (a texture is
-// named per mesh). Materials may differ: they travel with the joined mesh.
+// named per mesh) nor moves, and both are tessellated alike. Materials may differ: they travel
+// with the joined mesh.
 bool Joinable(const catar::SceneObject& a, const catar::SceneObject& b)
 {
-  return a.texture.empty() && b.texture.empty() && a.keyframes.Empty() && b.keyframes.Empty();
+  return a.texture.empty() && b.texture.empty() && a.keyframes.Empty() && b.keyframes.Empty() &&
+    a.adaptiveTolerance == b.adaptiveTolerance;
 }
 
 // An object's placement: translation times rotation (its `rotate`, Rz Ry Rx, as BuildObject).
@@ -453,6 +455,10 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   // Scene key `visibility`: painter order (default) or a depth buffer on the path length.
   in.Compositor->SetVisibility(scene.visibility == "depth" ? vtkCatadioptricCompositor::DEPTH_BUFFER
                                                            : vtkCatadioptricCompositor::PAINTER);
+  // Scene key `antialias`, or the renderer's Antialias.
+  const int samples = this->Antialias > 0 ? this->Antialias : scene.antialiasSamples;
+  in.Compositor->SetAntialias(samples > 1);
+  in.Compositor->SetAntialiasSamples(std::max(2, samples));
   int textures = 0;
   for (size_t i = 0; i < meshes.size(); ++i)
   {
@@ -593,8 +599,11 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     proj->SetCamera(in.Camera);
     proj->SetBackFaceCulling(scene.cullBackFaces);
     proj->SetBoundaryTolerance(scene.boundaryTolerance);
-    proj->SetAdaptiveTolerance(
-      this->AdaptiveTolerance > 0.0 ? this->AdaptiveTolerance : scene.adaptiveTolerance);
+    // The renderer's AdaptiveTolerance, else the group's objects' own, else the scene's.
+    const double own = scene.objects[groupFirst[g]].adaptiveTolerance;
+    proj->SetAdaptiveTolerance(this->AdaptiveTolerance > 0.0 ? this->AdaptiveTolerance
+        : own >= 0.0                                         ? own
+                                                             : scene.adaptiveTolerance);
     proj->SetSolver(scene.solver == catar::SolverType::Iterative
         ? vtkCatadioptricProjection::ITERATIVE
         : vtkCatadioptricProjection::QUARTIC);
@@ -696,6 +705,11 @@ vtkCatadioptricProjection* vtkCatadioptricSceneRenderer::GetProjection(int pipel
 {
   const auto& p = this->Internal->Projections;
   return pipeline >= 0 && pipeline < static_cast<int>(p.size()) ? p[pipeline].Get() : nullptr;
+}
+
+vtkCatadioptricCompositor* vtkCatadioptricSceneRenderer::GetCompositor()
+{
+  return this->Internal->Compositor;
 }
 
 vtkCatadioptricLighting* vtkCatadioptricSceneRenderer::GetLighting(int pipeline)

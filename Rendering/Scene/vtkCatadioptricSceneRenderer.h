@@ -27,6 +27,7 @@
 #include <memory> // for std::unique_ptr
 
 class vtkCatadioptricCamera;
+class vtkCatadioptricCompositor;
 class vtkCatadioptricLighting;
 class vtkCatadioptricProjection;
 class vtkImageData;
@@ -64,6 +65,14 @@ public:
   ///@}
 
   ///@{
+  /// Anti-aliased edges (vtkCatadioptricCompositor's Antialias) with Antialias x Antialias
+  /// samples per edge pixel (2 to 4), overriding the scene's `antialias`; 0 (default) keeps the
+  /// scene's. Applied when the scene is next read.
+  vtkSetClampMacro(Antialias, int, 0, 4);
+  vtkGetMacro(Antialias, int);
+  ///@}
+
+  ///@{
   /// Draw consecutive objects that can share a pipeline as one mesh (default on): untextured
   /// objects with the same point and cell arrays, with the quartic solver; when lit, their
   /// materials travel with the mesh (vtkCatadioptricLighting's "Materials" and "MaterialIndex").
@@ -82,6 +91,8 @@ public:
   vtkCatadioptricProjection* GetProjection(int pipeline);
   vtkCatadioptricLighting* GetLighting(int pipeline);
   ///@}
+  /// The compositor that draws the frame (its statistics, e.g. GetNumberOfEdgePixels()).
+  vtkCatadioptricCompositor* GetCompositor();
 
   /// One line per remeshed object of the last LoadScene(): triangle counts, steps, achieved edge
   /// bend ("" when nothing was remeshed).
@@ -161,6 +172,7 @@ protected:
   double RemeshPixelTolerance = 0.0;
   bool JoinObjects = true;
   double AdaptiveTolerance = 0.0;
+  int Antialias = 0;
   char* MarkerBoardFileName = nullptr;
 
 private:

@@ -595,4 +595,105 @@ TEST(Rasterizer, ClipTilesEqualTheWholeImage)
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Edge samples (anti-aliasing).
+
+// Coverage of the samples of every pixel: exactly the pixel centres a triangle covers on an image
+// S times larger, the vertices moved to that image's coordinates (S (c + 0.5) - 0.5).
+TEST(Rasterizer, EdgeSamplesAreTheCentresOfALargerImage)
+{
+  std::mt19937 rng(777);
+  std::uniform_real_distribution<double> px(-3.0, 27.0), py(-3.0, 23.0);
+  const int w = 24, h = 20;
+  long mismatches = 0, covered = 0;
+  for (int samples = 2; samples <= kMaxEdgeSamples; ++samples)
+  {
+    for (int n = 0; n < 150; ++n)
+    {
+      SnappedTriangle t;
+      for (int k = 0; k < 3; ++k)
+      {
+        t.x[k] = snapToGrid(px(rng));
+        t.y[k] = snapToGrid(py(rng));
+        std::fill(t.rgba[k], t.rgba[k] + 4, 1.0f);
+      }
+      // The larger image, drawn from vertices given in its own pixel coordinates.
+      Image big(samples * w, samples * h);
+      RasterVertex v[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        v[k].x = samples * (t.x[k] / 256.0 + 0.5) - 0.5;
+        v[k].y = samples * (t.y[k] / 256.0 + 0.5) - 0.5;
+      }
+      rasterizeTriangle(big.view(), v[0], v[1], v[2]);
+      for (int y = 0; y < h; ++y)
+      {
+        for (int x = 0; x < w; ++x)
+        {
+          Image block(samples, samples);
+          RasterResult result;
+          ASSERT_TRUE(rasterizeSamples(block.view(), t, x, y, samples, nullptr, nullptr, result));
+          for (int j = 0; j < samples; ++j)
+          {
+            for (int i = 0; i < samples; ++i)
+            {
+              const bool a = block.at(i, j)[3] != 0;
+              const bool b = big.at(samples * x + i, samples * y + j)[3] != 0;
+              mismatches += a != b;
+              covered += a;
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(covered, 10000);
+  EXPECT_EQ(mismatches, 0);
+}
+
+// A straight edge through a pixel: the samples right of it, counted by hand.
+TEST(Rasterizer, EdgeSamplesRightOfAnEdge)
+{
+  for (int samples = 2; samples <= kMaxEdgeSamples; ++samples)
+  {
+    for (const double e : { -0.45, -0.2, 0.05, 0.3, 0.45 })
+    {
+      // A large triangle covering x >= 10 + e over pixel (10, 5)'s rows.
+      SnappedTriangle t;
+      const double xs[3] = { 10 + e, 10 + e, 60 }, ys[3] = { -40, 50, 5 };
+      for (int k = 0; k < 3; ++k)
+      {
+        t.x[k] = snapToGrid(xs[k]);
+        t.y[k] = snapToGrid(ys[k]);
+        std::fill(t.rgba[k], t.rgba[k] + 4, 1.0f);
+      }
+      Image block(samples, samples);
+      RasterResult result;
+      ASSERT_TRUE(rasterizeSamples(block.view(), t, 10, 5, samples, nullptr, nullptr, result));
+      int expected = 0, got = 0;
+      for (int i = 0; i < samples; ++i)
+      {
+        expected += (i + 0.5) / samples - 0.5 > e ? samples : 0;
+        for (int j = 0; j < samples; ++j)
+        {
+          got += block.at(i, j)[3] != 0;
+        }
+      }
+      EXPECT_EQ(got, expected) << samples << " samples, edge at +" << e;
+    }
+  }
+  // A vertex too far for the sample grid's fixed point: nothing drawn, false.
+  SnappedTriangle far;
+  const double xs[3] = { 0, 300000, 0 }, ys[3] = { 0, 0, 10 };
+  for (int k = 0; k < 3; ++k)
+  {
+    far.x[k] = snapToGrid(xs[k]);
+    far.y[k] = snapToGrid(ys[k]);
+  }
+  Image block(4, 4);
+  RasterResult result;
+  EXPECT_FALSE(rasterizeSamples(block.view(), far, 1, 1, 4, nullptr, nullptr, result));
+  EXPECT_EQ(block.at(0, 0)[3], 0);
+}
+
 } // namespace

@@ -130,7 +130,7 @@ TEST(SceneDescription, ErrorsNameTheKey)
     { "edges: { boundary: 1 }", "boundary" },
     { "edges: 0.5", "edges" },
     { "adaptive: { pixel_tolerance: nan }", "pixel_tolerance" },
-    { "adaptive: { pixel_tolerance: -2 }", "edges: tolerances" },
+    { "adaptive: { pixel_tolerance: -2 }", "adaptive: pixel_tolerance must be pixels" },
     { "adaptive: { tolerance: 1 }", "tolerance" },
   };
   for (const Case& c : cases)
@@ -166,6 +166,43 @@ TEST(SceneDescription, EdgesAndAdaptive)
     ParseScene(std::string(kCamera) + "adaptive: { pixel_tolerance: 0.3 }\n", "", s, error))
     << error;
   EXPECT_EQ(s.adaptiveTolerance, 0.3);
+  // Per object: its own, else unset (-1: the scene's).
+  ASSERT_TRUE(ParseScene(std::string(kCamera) +
+      "adaptive: { pixel_tolerance: 2 }\nobjects:\n  - { type: box }\n"
+      "  - { type: sphere, adaptive: { pixel_tolerance: 0.25 } }\n",
+    "", s, error))
+    << error;
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.adaptiveTolerance, 2.0);
+  EXPECT_EQ(s.objects[0].adaptiveTolerance, -1.0);
+  EXPECT_EQ(s.objects[1].adaptiveTolerance, 0.25);
+  for (const char* bad : { "objects:\n  - { adaptive: { pixel_tolerance: -1 } }\n",
+         "objects:\n  - { adaptive: 0.5 }\n", "objects:\n  - { adaptive: { tolerance: 1 } }\n" })
+  {
+    EXPECT_FALSE(ParseScene(std::string(kCamera) + bad, "", s, error)) << bad;
+    EXPECT_NE(error.find("adaptive"), std::string::npos) << error;
+  }
+}
+
+TEST(SceneDescription, Antialias)
+{
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(ParseScene(std::string(kCamera), "", s, error)) << error;
+  EXPECT_EQ(s.antialiasSamples, 0);
+  ASSERT_TRUE(ParseScene(std::string(kCamera) + "antialias: true\n", "", s, error)) << error;
+  EXPECT_EQ(s.antialiasSamples, 4);
+  ASSERT_TRUE(ParseScene(std::string(kCamera) + "antialias: { samples: 2 }\n", "", s, error))
+    << error;
+  EXPECT_EQ(s.antialiasSamples, 2);
+  ASSERT_TRUE(ParseScene(std::string(kCamera) + "antialias: false\n", "", s, error)) << error;
+  EXPECT_EQ(s.antialiasSamples, 0);
+  for (const char* bad :
+    { "antialias: maybe\n", "antialias: { samples: 8 }\n", "antialias: { sample: 2 }\n" })
+  {
+    EXPECT_FALSE(ParseScene(std::string(kCamera) + bad, "", s, error)) << bad;
+    EXPECT_NE(error.find("antialias"), std::string::npos) << error;
+  }
 }
 
 TEST(SceneDescription, CalibrationFileRelativeToTheScene)

@@ -3,6 +3,7 @@
 // diffuse, specular, specular colour and power) and opacities, Gouraud and flat, with shadows.
 // And the lighting filter's own checks of a mesh's "Materials" and "MaterialIndex".
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricSceneRenderer.h"
@@ -185,4 +186,39 @@ TEST(SceneJoining, LightingRefusesBrokenMaterialTables)
       EXPECT_EQ(lighting->GetOutput()->GetPointData()->GetArray("Colors")->GetNumberOfTuples(), n);
     }
   }
+}
+
+// An object with its own `adaptive` gets a pipeline of its own and that tessellation; the others
+// keep the scene's. And the scene's `antialias` reaches the compositor.
+TEST(SceneJoining, ObjectsWithTheirOwnAdaptiveToleranceAreNotJoined)
+{
+  std::string text = Scene("gouraud");
+  const std::string sphere = "  - { type: sphere, radius: 0.04, resolution: 24,";
+  ASSERT_NE(text.find(sphere), std::string::npos);
+  text.replace(text.find(sphere), sphere.size(),
+    "  - { type: sphere, radius: 0.04, resolution: 3, adaptive: { pixel_tolerance: 0.01 },");
+  text += "antialias: { samples: 3 }\n";
+  const std::string path = ::testing::TempDir() + "/catar_joining_adaptive.yaml";
+  std::ofstream(path) << text;
+  vtkNew<vtkCatadioptricSceneRenderer> renderer;
+  renderer->SetSceneFileName(path.c_str());
+  ASSERT_TRUE(renderer->Render()) << renderer->GetLastError();
+  // The box; the first sphere alone; the other two spheres; the torus and cylinder.
+  ASSERT_EQ(renderer->GetNumberOfPipelines(), 4);
+  for (int p = 0; p < 4; ++p)
+  {
+    vtkCatadioptricProjection* projection = renderer->GetProjection(p);
+    EXPECT_EQ(projection->GetAdaptiveTolerance(), p == 1 ? 0.01 : 0.0) << p;
+    if (p == 1)
+    {
+      EXPECT_GT(projection->GetNumberOfSplitTriangles(), 0);
+    }
+    else
+    {
+      EXPECT_EQ(projection->GetNumberOfSplitTriangles(), 0) << p;
+    }
+  }
+  EXPECT_TRUE(renderer->GetCompositor()->GetAntialias());
+  EXPECT_EQ(renderer->GetCompositor()->GetAntialiasSamples(), 3);
+  EXPECT_GT(renderer->GetCompositor()->GetNumberOfEdgePixels(), 100);
 }
