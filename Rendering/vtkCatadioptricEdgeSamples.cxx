@@ -36,16 +36,17 @@ struct PixelBox
 {
   int x0, y0, x1, y1;
 };
-PixelBox Box(const catar::SnappedTriangle& t, const catar::PixelRect& rect, int width)
+PixelBox Box(
+  const std::int32_t x[3], const std::int32_t y[3], const catar::PixelRect& rect, int width)
 {
   constexpr int kHalf = 1 << (catar::kRasterSubPixelBits - 1);
   const auto pixel = [](std::int32_t c) {
     return static_cast<int>((static_cast<std::int64_t>(c) + kHalf) >> catar::kRasterSubPixelBits);
   };
-  return PixelBox{ std::max(0, pixel(std::min({ t.x[0], t.x[1], t.x[2] }))),
-    std::max(rect.y0, pixel(std::min({ t.y[0], t.y[1], t.y[2] }))),
-    std::min(width - 1, pixel(std::max({ t.x[0], t.x[1], t.x[2] }))),
-    std::min(rect.y1 - 1, pixel(std::max({ t.y[0], t.y[1], t.y[2] }))) };
+  return PixelBox{ std::max(0, pixel(std::min({ x[0], x[1], x[2] }))),
+    std::max(rect.y0, pixel(std::min({ y[0], y[1], y[2] }))),
+    std::min(width - 1, pixel(std::max({ x[0], x[1], x[2] }))),
+    std::min(rect.y1 - 1, pixel(std::max({ y[0], y[1], y[2] }))) };
 }
 } // namespace
 
@@ -114,15 +115,14 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
     }
     // A pixel whose centre shows the frame and one of whose samples a triangle covers: the tips
     // and slivers that reach into a pixel without covering its centre nor any neighbour's.
-    catar::SnappedTriangle t;
-    vtkCatadioptricTriangleBins::Info info;
     bins.ForEachTriangle(b, [&](std::uint32_t ref) {
-      bins.Get(ref, t, info);
-      const PixelBox box = Box(t, rect, width);
-      const std::int32_t fx[3] = { catar::SampleGridPosition(t.x[0], samples),
-        catar::SampleGridPosition(t.x[1], samples), catar::SampleGridPosition(t.x[2], samples) };
-      const std::int32_t fy[3] = { catar::SampleGridPosition(t.y[0], samples),
-        catar::SampleGridPosition(t.y[1], samples), catar::SampleGridPosition(t.y[2], samples) };
+      std::int32_t tx[3], ty[3];
+      bins.GetPositions(ref, tx, ty);
+      const PixelBox box = Box(tx, ty, rect, width);
+      const std::int32_t fx[3] = { catar::SampleGridPosition(tx[0], samples),
+        catar::SampleGridPosition(tx[1], samples), catar::SampleGridPosition(tx[2], samples) };
+      const std::int32_t fy[3] = { catar::SampleGridPosition(ty[0], samples),
+        catar::SampleGridPosition(ty[1], samples), catar::SampleGridPosition(ty[2], samples) };
       for (int y = box.y0; y <= box.y1; ++y)
       {
         std::uint8_t* mask = band.Mask.data() + static_cast<size_t>(width) * (y - rect.y0);
@@ -204,16 +204,24 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
     catar::SnappedTriangle t;
     vtkCatadioptricTriangleBins::Info info;
     bins.ForEachTriangle(b, [&](std::uint32_t ref) {
-      bins.Get(ref, t, info);
-      const PixelBox box = Box(t, rect, width);
-      const catar::TextureView* texture = info.Texture >= 0 ? &textures[info.Texture] : nullptr;
-      blockDepth.write = info.Opaque;
+      std::int32_t tx[3], ty[3];
+      bins.GetPositions(ref, tx, ty);
+      const PixelBox box = Box(tx, ty, rect, width);
+      bool got = false; // the rest of the triangle read only when it meets an edge pixel
+      const catar::TextureView* texture = nullptr;
       for (int y = box.y0; y <= box.y1; ++y)
       {
         const int* first = band.Columns.data() + band.Rows[y - rect.y0];
         const int* last = band.Columns.data() + band.Rows[y - rect.y0 + 1];
         for (const int* c = std::lower_bound(first, last, box.x0); c != last && *c <= box.x1; ++c)
         {
+          if (!got)
+          {
+            bins.Get(ref, t, info);
+            texture = info.Texture >= 0 ? &textures[info.Texture] : nullptr;
+            blockDepth.write = info.Opaque;
+            got = true;
+          }
           const size_t e = static_cast<size_t>(c - band.Columns.data());
           block.data = band.Samples.data() + e * perPixel * 4;
           blockDepth.data = depth ? band.Depths.data() + e * perPixel : nullptr;

@@ -143,6 +143,13 @@ public:
 
   /// Triangle `ref`: its vertices as rasterizeSnappedTriangle takes them, and its drawing state.
   void Get(std::uint32_t ref, catar::SnappedTriangle& t, Info& info) const;
+  /// Triangle `ref`'s snapped vertex positions only (1/256 px).
+  void GetPositions(std::uint32_t ref, std::int32_t x[3], std::int32_t y[3]) const
+  {
+    const Triangle& tri = this->Triangles[ref];
+    std::copy(tri.X, tri.X + 3, x);
+    std::copy(tri.Y, tri.Y + 3, y);
+  }
 
 private:
   vtkCatadioptricTriangleBins(const vtkCatadioptricTriangleBins&) = delete;

@@ -258,7 +258,7 @@ int main(int argc, char* argv[])
     const char* label;
     FrameOptions options;
   };
-  std::vector<Variant> variantList(8);
+  std::vector<Variant> variantList(11);
   variantList[0].label = "1 spot, gouraud, painter, quartic";
   variantList[1].label = "1 spot, gouraud, painter, iterative";
   variantList[1].options.solver = vtkCatadioptricProjection::ITERATIVE;
@@ -280,6 +280,15 @@ int main(int argc, char* argv[])
   variantList[6].options.cullBackFaces = true;
   variantList[7].label = "1 spot, gouraud, painter, quartic, back faces culled";
   variantList[7].options.cullBackFaces = true;
+  variantList[8].label = "1 spot, gouraud, painter, iterative, antialiased 4 x 4";
+  variantList[8].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[8].options.antialias = 4;
+  variantList[9].label = "1 spot, gouraud, painter, iterative, antialiased 2 x 2";
+  variantList[9].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[9].options.antialias = 2;
+  variantList[10].label = "1 spot, gouraud, painter, iterative, adaptive 0.25 px";
+  variantList[10].options.solver = vtkCatadioptricProjection::ITERATIVE;
+  variantList[10].options.adaptive = 0.25;
   for (const Variant& v : variantList)
   {
     FramePipeline pipeline(target, camera, frame, v.options);

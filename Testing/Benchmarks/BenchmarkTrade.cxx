@@ -61,6 +61,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace
@@ -168,8 +169,44 @@ Rendering Keep(vtkImageData* image, const std::string& what)
 struct Accuracy
 {
   double iou = 0, meanBoundary = 0, maxBoundary = 0, psnr = 0, ssim = 0;
+  /// Mean |fast - exact| (levels, R G B) over the reference's silhouette edge: the pixels whose
+  /// 3 x 3 neighbourhood holds both object and background in the reference's ids.
+  double edgeError = 0;
   long long differingTriangles = -1; ///< -1: not comparable (remeshed)
 };
+
+double EdgeError(const catar::ImageInput& fast, const catar::ImageInput& exact)
+{
+  const int w = exact.color.width, h = exact.color.height;
+  double sum = 0;
+  long long n = 0;
+  for (int y = 1; y + 1 < h; ++y)
+  {
+    for (int x = 1; x + 1 < w; ++x)
+    {
+      bool object = false, background = false;
+      for (int dy = -1; dy <= 1; ++dy)
+      {
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          (exact.triangleIds.at(x + dx, y + dy) >= 0 ? object : background) = true;
+        }
+      }
+      if (!(object && background))
+      {
+        continue;
+      }
+      const std::uint8_t* a = fast.color.pixel(x, y);
+      const std::uint8_t* b = exact.color.pixel(x, y);
+      for (int k = 0; k < 3; ++k)
+      {
+        sum += std::abs(int(a[k]) - int(b[k]));
+      }
+      ++n;
+    }
+  }
+  return n ? sum / (3.0 * static_cast<double>(n)) : 0.0;
+}
 
 // Silhouettes come from the VisibleTriangle id buffers (id >= 0: the object), so they are the
 // virtual object's only, whatever the camera frame under it; both images are composited onto the
@@ -191,6 +228,7 @@ Accuracy Compare(const Rendering& fast, const Rendering& exact, bool trianglesCo
   acc.meanBoundary = c.meanBoundaryDistance;
   acc.maxBoundary = c.maxBoundaryDistance;
   acc.psnr = c.psnr;
+  acc.edgeError = EdgeError(a, b);
   if (trianglesComparable && c.trianglesCompared)
   {
     acc.differingTriangles = static_cast<long long>(c.differentTrianglePixels);
@@ -234,7 +272,8 @@ struct Row
   double frameMs = 0;
   bool hasAccuracy = false;
   Accuracy accuracy;
-  int series = 0; ///< chart: 0 quartic remesh rows, 1 iterative remesh rows, 2 variants, -1 none
+  int series = 0; ///< chart: 0 quartic remesh rows, 1 iterative remesh rows, 2 variants,
+                  ///< 3 adaptive tessellation, 4 anti-aliasing rows (8x8 reference); -1 none
 };
 
 std::string Number(double v, const char* format)
@@ -260,12 +299,12 @@ std::vector<std::string> Fields(const Row& r)
     Number(r.frameMs, "%.2f"), Number(r.frameMs > 0 ? 1e3 / r.frameMs : 0.0, "%.2f"),
     acc ? Number(a.iou, "%.4f") : "", acc ? Number(a.meanBoundary, "%.3f") : "",
     acc ? Number(a.maxBoundary, "%.2f") : "", acc ? Number(a.psnr, "%.2f") : "",
-    acc ? Number(a.ssim, "%.4f") : "",
+    acc ? Number(a.ssim, "%.4f") : "", acc ? Number(a.edgeError, "%.2f") : "",
     acc && a.differingTriangles >= 0 ? std::to_string(a.differingTriangles) : "" };
 }
 
 const char* const kColumns[] = { "object", "configuration", "triangles", "solver", "frame_ms",
-  "fps", "iou", "mean_boundary_px", "max_boundary_px", "psnr_db", "ssim",
+  "fps", "iou", "mean_boundary_px", "max_boundary_px", "psnr_db", "ssim", "edge_error_levels",
   "differing_triangle_pixels" };
 
 void PrintRow(const Row& r)
@@ -325,10 +364,13 @@ void WriteChart(const std::string& file, const std::vector<Row>& rows, const std
   matrix->SetSize(vtkVector2i(2, 1));
   matrix->SetGutter(vtkVector2f(40.0f, 20.0f));
 
-  const char* const seriesNames[3] = { "quartic solver (input + remeshed)",
-    "iterative solver (input + remeshed)", "input: depth / flat / shadows variants" };
-  const unsigned char seriesColors[3][3] = { { 31, 119, 180 }, { 214, 39, 40 }, { 90, 90, 90 } };
-  const int markers[3] = { vtkPlotPoints::CIRCLE, vtkPlotPoints::DIAMOND, vtkPlotPoints::PLUS };
+  const char* const seriesNames[5] = { "quartic solver (input + remeshed)",
+    "iterative solver (input + remeshed)", "input: depth / flat / shadows variants",
+    "adaptive tessellation per frame", "anti-aliasing off / 2x2 / 4x4 (8x8 reference)" };
+  const unsigned char seriesColors[5][3] = { { 31, 119, 180 }, { 214, 39, 40 }, { 90, 90, 90 },
+    { 44, 160, 44 }, { 148, 103, 189 } };
+  const int markers[5] = { vtkPlotPoints::CIRCLE, vtkPlotPoints::DIAMOND, vtkPlotPoints::PLUS,
+    vtkPlotPoints::SQUARE, vtkPlotPoints::CROSS };
   for (int panel = 0; panel < 2; ++panel)
   {
     vtkChartXY* chart = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(panel, 0)));
@@ -353,7 +395,7 @@ void WriteChart(const std::string& file, const std::vector<Row>& rows, const std
     chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
     chart->GetLegend()->GetLabelProperties()->SetFontSize(12);
     double xMin = std::numeric_limits<double>::max(), xMax = 0.0, yMax = 0.0;
-    for (int s = 0; s < 3; ++s)
+    for (int s = 0; s < 5; ++s)
     {
       vtkNew<vtkFloatArray> x, y;
       x->SetName("fps");
@@ -440,6 +482,14 @@ std::string VariantLabel(const FrameOptions& o)
   s += o.shading == vtkCatadioptricLighting::FLAT ? ", flat" : ", gouraud";
   s += o.shadows ? ", shadows" : "";
   s += o.cullBackFaces ? ", back faces culled" : "";
+  if (o.adaptive > 0)
+  {
+    s += ", adaptive " + Number(o.adaptive, "%g") + " px";
+  }
+  if (o.antialias > 1)
+  {
+    s += ", antialiased " + std::to_string(o.antialias) + "x" + std::to_string(o.antialias);
+  }
   return s;
 }
 
@@ -450,14 +500,14 @@ struct Run
   vtkPolyData* original;
   int frames;
   int samples;
-  // References of kAccuracyFrame, by (shading, shadows).
-  std::map<std::pair<int, bool>, Rendering> references;
+  // References of kAccuracyFrame, by (shading, shadows, samples per pixel side).
+  std::map<std::tuple<int, bool, int>, Rendering> references;
 
   // The reference image of kAccuracyFrame for these options: the ray tracer on the original mesh
   // with the lighting filter of `pipeline` (its lights already moved to kAccuracyFrame).
-  const Rendering& Reference(const FrameOptions& o, FramePipeline& pipeline)
+  const Rendering& Reference(const FrameOptions& o, FramePipeline& pipeline, int samples)
   {
-    const auto key = std::make_pair(o.shading, o.shadows);
+    const auto key = std::make_tuple(o.shading, o.shadows, samples);
     auto it = this->references.find(key);
     if (it != this->references.end())
     {
@@ -465,6 +515,7 @@ struct Run
     }
     const int errors = Output->Errors;
     vtkSmartPointer<vtkCatadioptricRayTracer> tracer = this->Tracer(pipeline.GetLighting());
+    tracer->SetSamples(samples);
     tracer->OutputVisibleTriangleOn();
     tracer->Update();
     Check("reference ray tracer", errors, tracer->GetNumberOfHits() > 0);
@@ -474,7 +525,7 @@ struct Run
 
   // Times the fast path on `mesh`, then renders kAccuracyFrame with ids and compares it.
   Row Measure(const std::string& object, const std::string& label, vtkPolyData* mesh,
-    const FrameOptions& o, bool trianglesComparable, int series)
+    const FrameOptions& o, bool trianglesComparable, int series, int referenceSamples = 0)
   {
     Row r;
     r.object = object;
@@ -490,7 +541,8 @@ struct Run
     pipeline.Frame(kAccuracyFrame);
     Check("fast path image (" + label + ")", errors);
     const Rendering fast = Keep(pipeline.GetOutput(), "compositor");
-    const Rendering& exact = this->Reference(o, pipeline);
+    const Rendering& exact =
+      this->Reference(o, pipeline, referenceSamples > 0 ? referenceSamples : this->samples);
     if (fast.width != exact.width || fast.height != exact.height)
     {
       throw std::runtime_error("the fast path and the reference differ in size");
@@ -604,9 +656,10 @@ int main(int argc, char* argv[])
     std::printf("Speed (median of %d frames, 1328x1048) and accuracy of frame %d against the "
                 "ray-traced reference of the input mesh (%s):\n\n",
       frames, kAccuracyFrame, object.c_str());
-    std::printf("| object | configuration | triangles | solver | frame (ms) | fps | IoU | mean "
-                "boundary (px) | max boundary (px) | PSNR (dB) | SSIM | differing-triangle "
-                "pixels |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+      "| object | configuration | triangles | solver | frame (ms) | fps | IoU | mean "
+      "boundary (px) | max boundary (px) | PSNR (dB) | SSIM | edge error (levels) | "
+      "differing-triangle pixels |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::fflush(stdout);
     std::vector<Row> rows;
     auto add = [&rows](const Row& r) {
@@ -701,10 +754,41 @@ int main(int argc, char* argv[])
       }
     }
 
-    // 3. The reference renderer's own speed.
+    // 3. Per-frame adaptive tessellation, on a coarse remesh and on the input (iterative).
+    for (const Mesh& m : meshes)
+    {
+      if (!m.input && m.label != "remesh area 0.0001 m^2")
+      {
+        continue;
+      }
+      for (double p : quick ? std::vector<double>{ 1.0 } : std::vector<double>{ 1.0, 0.25 })
+      {
+        FrameOptions o;
+        o.solver = vtkCatadioptricProjection::ITERATIVE;
+        o.adaptive = p;
+        add(run.Measure(object, m.label + "; " + VariantLabel(o), m.mesh, o, false, 3));
+      }
+    }
+
+    // 4. Anti-aliasing, against a reference of 8 x 8 samples per pixel (the rows without it
+    // again, for comparison).
+    for (int aa : quick ? std::vector<int>{ 1, 4 } : std::vector<int>{ 1, 2, 4 })
+    {
+      FrameOptions o;
+      o.solver = vtkCatadioptricProjection::ITERATIVE;
+      o.antialias = aa;
+      add(run.Measure(
+        object, "input; " + VariantLabel(o) + "; reference 8x8 samples", mesh, o, false, 4, 8));
+    }
+
+    // 5. The reference renderer's own speed.
     add(run.ReferenceSpeed(object, quick ? 2 : 5));
     for (const auto& reference : run.references)
     {
+      if (std::get<2>(reference.first) != samples)
+      {
+        continue;
+      }
       const std::vector<catar::RasterId>& ids = reference.second.ids;
       std::printf("\nThe reference's silhouette covers %lld pixels.\n",
         static_cast<long long>(

@@ -89,6 +89,8 @@ struct FrameOptions
   bool shadows = false;
   int visibility = vtkCatadioptricCompositor::PAINTER;
   bool cullBackFaces = false;
+  int antialias = 0;     ///< samples per edge pixel side (0: off)
+  double adaptive = 0.0; ///< per-frame adaptive tessellation, pixels (0: off)
 };
 
 /// Times of one frame's stages in milliseconds.
@@ -115,6 +117,7 @@ public:
     this->Projection->SetCamera(camera);
     this->Projection->SetSolver(options.solver);
     this->Projection->SetBackFaceCulling(options.cullBackFaces);
+    this->Projection->SetAdaptiveTolerance(options.adaptive);
     this->Lighting->SetInputConnection(this->Projection->GetOutputPort());
     this->Lighting->SetShadingMode(options.shading);
     this->Lighting->SetShadows(options.shadows);
@@ -131,6 +134,8 @@ public:
     this->Compositor->SetFrameData(frame);
     this->Compositor->AddMeshConnection(this->Sort->GetOutputPort());
     this->Compositor->SetVisibility(options.visibility);
+    this->Compositor->SetAntialias(options.antialias > 1);
+    this->Compositor->SetAntialiasSamples(std::max(2, options.antialias));
     this->Compositor->SetColorArrayName("Colors");
     this->MoveLights(0);
   }
