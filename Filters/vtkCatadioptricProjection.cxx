@@ -342,8 +342,8 @@ int vtkCatadioptricProjection::RequestData(
     options.bendTolerance = this->AdaptiveTolerance;
     options.solver = solver;
     catar::Tessellation added;
-    this->NumberOfSplitTriangles = vtkCatadioptricTessellatedMesh::Refine(
-      input, projector, options, status->GetPointer(0), pixels->GetPointer(0), added, output);
+    this->NumberOfSplitTriangles = vtkCatadioptricTessellatedMesh::Refine(input, projector, options,
+      status->GetPointer(0), pixels->GetPointer(0), mirror->GetPointer(0), added, output);
     if (this->NumberOfSplitTriangles > 0)
     {
       camera->WriteToFieldData(output->GetFieldData());

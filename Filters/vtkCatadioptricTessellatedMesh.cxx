@@ -17,9 +17,10 @@ constexpr vtkIdType kGrain = 1024;
 // The most pieces one execution makes (all split triangles together).
 constexpr std::size_t kMaxPieces = std::size_t(1) << 22;
 
-// The triangle's corners: world points and projections (status and pixel; the rest is not read).
+// The triangle's corners: world points and projections (status, pixel and mirror point; the
+// rest is not read).
 void Corners(vtkPoints* points, const unsigned char* status, const double* pixels,
-  const vtkIdType* ids, std::array<catar::Vec3, 3>& world,
+  const double* mirrorPoints, const vtkIdType* ids, std::array<catar::Vec3, 3>& world,
   std::array<catar::ProjectedPoint, 3>& projected)
 {
   for (int k = 0; k < 3; ++k)
@@ -29,14 +30,16 @@ void Corners(vtkPoints* points, const unsigned char* status, const double* pixel
     world[k] = catar::Vec3(p[0], p[1], p[2]);
     projected[k].status = static_cast<catar::ProjectionStatus>(status[ids[k]]);
     projected[k].pixel = catar::Vec2(pixels[2 * ids[k]], pixels[2 * ids[k] + 1]);
+    const double* m = mirrorPoints + 3 * ids[k];
+    projected[k].mirrorPoint = catar::Vec3(m[0], m[1], m[2]);
   }
 }
 } // namespace
 
 vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   const catar::Projector& projector, const catar::TessellationOptions& options,
-  const unsigned char* status, const double* pixels, catar::Tessellation& added,
-  vtkPolyData* output)
+  const unsigned char* status, const double* pixels, const double* mirrorPoints,
+  catar::Tessellation& added, vtkPolyData* output)
 {
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType nPolys = polys->GetNumberOfCells();
@@ -58,15 +61,19 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   // tolerance: kept), then each candidate's fate.
   std::vector<unsigned char> split(static_cast<std::size_t>(nPolys), 0);
   vtkCatadioptricParallel::For(0, nPolys, kGrain, [&](vtkIdType begin, vtkIdType end) {
-    vtkNew<vtkIdList> ids;
+    vtkNew<vtkIdList> scratch;
+    std::vector<vtkIdType> cells;
+    std::vector<std::array<catar::Vec3, 3>> world;
+    std::vector<std::array<catar::ProjectedPoint, 3>> projected;
     for (vtkIdType c = begin; c < end; ++c)
     {
-      polys->GetCellAtId(c, ids);
-      if (ids->GetNumberOfIds() != 3)
+      vtkIdType n = 0;
+      const vtkIdType* v = nullptr;
+      polys->GetCellAtId(c, n, v, scratch);
+      if (n != 3)
       {
         continue;
       }
-      const vtkIdType* v = ids->GetPointer(0);
       const bool allSeen =
         catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) &&
         catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) &&
@@ -75,13 +82,17 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
       {
         continue;
       }
-      std::array<catar::Vec3, 3> world;
-      std::array<catar::ProjectedPoint, 3> projected;
-      Corners(points, status, pixels, v, world, projected);
-      split[c] = catar::TriangleFateOf(projector, world, projected, options) ==
-          catar::TriangleFate::Tessellate
-        ? 1
-        : 0;
+      cells.push_back(c);
+      world.emplace_back();
+      projected.emplace_back();
+      Corners(points, status, pixels, mirrorPoints, v, world.back(), projected.back());
+    }
+    std::vector<catar::TriangleFate> fates(cells.size());
+    catar::TriangleFates(
+      projector, cells.size(), world.data(), projected.data(), options, fates.data());
+    for (std::size_t k = 0; k < cells.size(); ++k)
+    {
+      split[cells[k]] = fates[k] == catar::TriangleFate::Tessellate ? 1 : 0;
     }
   });
   std::vector<vtkIdType> chosen;
@@ -112,7 +123,7 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
         const vtkIdType* v = ids->GetPointer(0);
         std::array<catar::Vec3, 3> world;
         std::array<catar::ProjectedPoint, 3> projected;
-        Corners(points, status, pixels, v, world, projected);
+        Corners(points, status, pixels, mirrorPoints, v, world, projected);
         // Ids local to this tessellation, renumbered below.
         catar::TessellateTriangle(projector, chosen[k], { { v[0], v[1], v[2] } }, world, projected,
           nPoints, bounded, pieces[k]);

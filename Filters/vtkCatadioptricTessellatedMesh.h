@@ -21,7 +21,8 @@ class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricTessellatedMesh
 public:
   /// Tessellates the triangles of `input` that need it this frame (polygons of more sides are
   /// left as they are), given the projections of its points (`status`, one ProjectionStatus per
-  /// input point, and `pixels`, two per point). When any is split, `output` becomes the refined
+  /// input point, `pixels`, two per point, and `mirrorPoints`, three per point, camera frame: where
+  /// new points' reflections are searched from). When any is split, `output` becomes the refined
   /// mesh: the input points then the new ones (with point data interpolated from their
   /// triangle's vertices), cells in the input's order with each split triangle's pieces in its
   /// place (with its cell data); `added` holds the new points' projections. At most 2^22 pieces
@@ -29,7 +30,7 @@ public:
   /// triangles split; 0 leaves `output` and `added` as they are.
   static vtkIdType Refine(vtkPolyData* input, const catar::Projector& projector,
     const catar::TessellationOptions& options, const unsigned char* status, const double* pixels,
-    catar::Tessellation& added, vtkPolyData* output);
+    const double* mirrorPoints, catar::Tessellation& added, vtkPolyData* output);
 };
 
 #endif

@@ -73,13 +73,16 @@ private:
     std::int64_t id = -1; // the output id, once a piece uses it
   };
 
-  int Make(const Vec3& weights)
+  // A new point at these weights; guess: a reflection point near its own (camera frame), which
+  // gives the same answer in fewer steps (Projector::ProjectWorldNear), or null.
+  int Make(const Vec3& weights, const Vec3* guess = nullptr)
   {
     Node n;
     n.weights = weights;
     n.world =
       weights[0] * this->World[0] + weights[1] * this->World[1] + weights[2] * this->World[2];
-    n.projected = this->Proj.ProjectWorld(n.world, this->Options.solver);
+    n.projected = guess ? this->Proj.ProjectWorldNear(n.world, *guess)
+                        : this->Proj.ProjectWorld(n.world, this->Options.solver);
     this->Nodes.push_back(n);
     return static_cast<int>(this->Nodes.size()) - 1;
   }
@@ -92,7 +95,10 @@ private:
     {
       return found->second;
     }
-    const int m = this->Make(0.5 * (this->Nodes[a].weights + this->Nodes[b].weights));
+    const Node &na = this->Nodes[a], &nb = this->Nodes[b];
+    const Vec3 guess = 0.5 * (na.projected.mirrorPoint + nb.projected.mirrorPoint);
+    const bool near = Seen(na.projected) && Seen(nb.projected);
+    const int m = this->Make(0.5 * (na.weights + nb.weights), near ? &guess : nullptr);
     this->Midpoints.emplace(key, m);
     return m;
   }
@@ -154,7 +160,7 @@ private:
       const Vec3 mid = 0.5 * (lo + hi);
       const Vec3 world =
         mid[0] * this->World[0] + mid[1] * this->World[1] + mid[2] * this->World[2];
-      const ProjectedPoint q = this->Proj.ProjectWorld(world, this->Options.solver);
+      const ProjectedPoint q = this->Proj.ProjectWorldNear(world, seen.mirrorPoint);
       if (Seen(q))
       {
         const double moved = (q.pixel - seen.pixel).norm();
@@ -297,13 +303,21 @@ TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3
     {
       return TriangleFate::Keep;
     }
+    // The three edge midpoints side by side, each from its ends' reflection points.
+    Vec3 mids[3], guesses[3];
+    ProjectedPoint mid[3];
     for (int i = 0; i < 3; ++i)
     {
       const int j = (i + 1) % 3;
-      const ProjectedPoint mid =
-        projector.ProjectWorld(0.5 * (world[i] + world[j]), options.solver);
-      if (Bend(projected[i], projected[j], mid) > options.bendTolerance &&
-        (Seen(mid) || options.boundaryTolerance > 0.0))
+      mids[i] = 0.5 * (world[i] + world[j]);
+      guesses[i] = 0.5 * (projected[i].mirrorPoint + projected[j].mirrorPoint);
+    }
+    projector.ProjectWorldNear(3, mids, guesses, mid);
+    for (int i = 0; i < 3; ++i)
+    {
+      const int j = (i + 1) % 3;
+      if (Bend(projected[i], projected[j], mid[i]) > options.bendTolerance &&
+        (Seen(mid[i]) || options.boundaryTolerance > 0.0))
       {
         return TriangleFate::Tessellate;
       }
@@ -329,6 +343,52 @@ TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3
     }
   }
   return TriangleFate::Drop;
+}
+
+void TriangleFates(const Projector& projector, std::size_t n, const std::array<Vec3, 3>* world,
+  const std::array<ProjectedPoint, 3>* projected, const TessellationOptions& options,
+  TriangleFate* out)
+{
+  // The triangles seen whole, measured for bending: their midpoints, all together.
+  std::vector<std::size_t> bent;
+  std::vector<Vec3> mids, guesses;
+  for (std::size_t t = 0; t < n; ++t)
+  {
+    bool whole = options.bendTolerance > 0.0;
+    for (int i = 0; i < 3 && whole; ++i)
+    {
+      whole = Seen(projected[t][i]) && world[t][i].allFinite();
+    }
+    if (!whole)
+    {
+      out[t] = TriangleFateOf(projector, world[t], projected[t], options);
+      continue;
+    }
+    bent.push_back(t);
+    for (int i = 0; i < 3; ++i)
+    {
+      const int j = (i + 1) % 3;
+      mids.push_back(0.5 * (world[t][i] + world[t][j]));
+      guesses.push_back(0.5 * (projected[t][i].mirrorPoint + projected[t][j].mirrorPoint));
+    }
+  }
+  std::vector<ProjectedPoint> mid(mids.size());
+  projector.ProjectWorldNear(mids.size(), mids.data(), guesses.data(), mid.data());
+  for (std::size_t k = 0; k < bent.size(); ++k)
+  {
+    const std::size_t t = bent[k];
+    out[t] = TriangleFate::Keep;
+    for (int i = 0; i < 3; ++i)
+    {
+      const ProjectedPoint& m = mid[3 * k + i];
+      if (Bend(projected[t][i], projected[t][(i + 1) % 3], m) > options.bendTolerance &&
+        (Seen(m) || options.boundaryTolerance > 0.0))
+      {
+        out[t] = TriangleFate::Tessellate;
+        break;
+      }
+    }
+  }
 }
 
 std::size_t TessellateTriangle(const Projector& projector, std::int64_t cell,

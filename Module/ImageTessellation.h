@@ -72,9 +72,18 @@ enum class TriangleFate : std::uint8_t
   Tessellate ///< split (crosses the boundary, or bends too much)
 };
 
-/// The fate of triangle (a, b, c) (world points, their projections).
+/// The fate of triangle (a, b, c) (world points, their projections: status, pixel and, for the
+/// edge midpoints' start, mirror point).
 TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3>& world,
   const std::array<ProjectedPoint, 3>& projected, const TessellationOptions& options);
+
+/// TriangleFateOf for n triangles: out[i] = TriangleFateOf(projector, world[i], projected[i],
+/// options), the same fates, the edge midpoints of the triangles seen whole projected side by side
+/// (Projector::ProjectWorldNear, each from its edge's ends' reflection points, so `projected`
+/// must carry the corners' mirror points).
+void TriangleFates(const Projector& projector, std::size_t n, const std::array<Vec3, 3>* world,
+  const std::array<ProjectedPoint, 3>* projected, const TessellationOptions& options,
+  TriangleFate* out);
 
 /// Tessellates input triangle `cell` with vertices `ids` (input point ids), world points and
 /// projections, appending its pieces and new points to `out` (the new points' ids start at

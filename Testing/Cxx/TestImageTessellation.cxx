@@ -197,3 +197,56 @@ TEST(ImageTessellation, FatesOfTriangles)
       .fate,
     TriangleFate::Drop);
 }
+
+// Many triangles at once get the fates they get one at a time: random triangles of all sizes
+// around the rig (seen whole, across the boundary, hidden, with NaN corners).
+TEST(ImageTessellation, FatesOfManyTrianglesAtOnce)
+{
+  const CameraModel model = catar_test::DemoCameraModel();
+  const Projector proj(model);
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-0.5, 0.5), s(0.001, 0.3);
+  std::vector<std::array<Vec3, 3>> world;
+  std::vector<std::array<ProjectedPoint, 3>> projected;
+  for (int t = 0; t < 3000; ++t)
+  {
+    // Every third one centred in the region the mirror hides (behind it, near its axis).
+    const Vec3 c = t % 3 == 0 ? Vec3(0.08 * u(rng), 0.08 * u(rng), 0.35 + 0.3 * u(rng))
+                              : Vec3(u(rng), u(rng), u(rng) - 0.3);
+    const double size = s(rng);
+    std::array<Vec3, 3> w;
+    std::array<ProjectedPoint, 3> p;
+    for (int k = 0; k < 3; ++k)
+    {
+      w[k] = model.CameraToWorld(c + size * Vec3(u(rng), u(rng), u(rng)));
+      if (t % 97 == 0 && k == 1)
+      {
+        w[k].x() = std::numeric_limits<double>::quiet_NaN();
+      }
+      p[k] = proj.ProjectWorld(w[k]);
+    }
+    world.push_back(w);
+    projected.push_back(p);
+  }
+  for (const double bend : { 0.0, 0.25, 2.0 })
+  {
+    TessellationOptions options;
+    options.bendTolerance = bend;
+    std::vector<TriangleFate> batch(world.size());
+    TriangleFates(proj, world.size(), world.data(), projected.data(), options, batch.data());
+    int counts[3] = { 0, 0, 0 }, differ = 0;
+    for (std::size_t t = 0; t < world.size(); ++t)
+    {
+      const TriangleFate one = TriangleFateOf(proj, world[t], projected[t], options);
+      differ += one != batch[t];
+      ++counts[static_cast<int>(one)];
+    }
+    EXPECT_EQ(differ, 0) << "bend " << bend;
+    // All three fates occur.
+    EXPECT_GT(counts[0], 100) << bend;
+    EXPECT_GT(counts[1], 100) << bend;
+    EXPECT_GT(counts[2], 100) << bend;
+    std::cout << "[ fates    ] bend " << bend << ": kept " << counts[0] << ", dropped " << counts[1]
+              << ", tessellated " << counts[2] << std::endl;
+  }
+}
