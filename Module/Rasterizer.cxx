@@ -876,13 +876,16 @@ RasterResult rasterizeTriangle(const ImageView& target, const RasterVertex& v0,
     target, v0, v1, v2, PixelRect{ 0, 0, target.width, target.height }, depth, texture, ids, id);
 }
 
-bool rasterizeSamples(const ImageView& block, const SnappedTriangle& t, int x, int y, int samples,
-  const DepthView* depth, const TextureView* texture, RasterResult& result)
+namespace
+{
+// t's positions on the sample grid of pixel (x, y), relative to its first sample (S x, S y);
+// false when a vertex is more than 2^18 pixels away.
+bool LocalSamplePositions(const SnappedTriangle& t, int x, int y, int samples,
+  std::int32_t lx[3], std::int32_t ly[3])
 {
   constexpr std::int64_t kReach = std::int64_t(1) << (18 + kRasterSubPixelBits);
   const std::int64_t ox = static_cast<std::int64_t>(x) * kOne;
   const std::int64_t oy = static_cast<std::int64_t>(y) * kOne;
-  SnappedTriangle local = t;
   for (int k = 0; k < 3; ++k)
   {
     const std::int64_t dx = t.x[k] - ox, dy = t.y[k] - oy;
@@ -890,9 +893,58 @@ bool rasterizeSamples(const ImageView& block, const SnappedTriangle& t, int x, i
     {
       return false;
     }
-    // The sample grid's coordinates relative to the pixel's first sample (S x, S y).
-    local.x[k] = SampleGridPosition(static_cast<std::int32_t>(dx), samples);
-    local.y[k] = SampleGridPosition(static_cast<std::int32_t>(dy), samples);
+    lx[k] = SampleGridPosition(static_cast<std::int32_t>(dx), samples);
+    ly[k] = SampleGridPosition(static_cast<std::int32_t>(dy), samples);
+  }
+  return true;
+}
+} // namespace
+
+std::uint32_t sampleCoverage(const SnappedTriangle& t, int x, int y, int samples, bool& reachable)
+{
+  std::int32_t lx[3], ly[3];
+  reachable = LocalSamplePositions(t, x, y, samples, lx, ly);
+  Grid g;
+  int order[3];
+  if (!reachable || Normalise(lx, ly, g, order) == 0)
+  {
+    return 0;
+  }
+  int xMin, yMin, xMax, yMax;
+  CentreRange(g, PixelRect{ 0, 0, samples, samples }, xMin, yMin, xMax, yMax);
+  if (xMin > xMax || yMin > yMax)
+  {
+    return 0;
+  }
+  std::int64_t w[3], stepX[3], stepY[3];
+  EdgeSetup(g, static_cast<std::int64_t>(xMin) * kOne, static_cast<std::int64_t>(yMin) * kOne, w,
+    stepX, stepY);
+  std::uint32_t mask = 0;
+  for (int j = yMin; j <= yMax; ++j)
+  {
+    std::int64_t a = w[0], b = w[1], c = w[2];
+    for (int i = xMin; i <= xMax; ++i)
+    {
+      mask |= ((a | b | c) >= 0 ? 1u : 0u) << (i + samples * j);
+      a += stepX[0];
+      b += stepX[1];
+      c += stepX[2];
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      w[k] += stepY[k];
+    }
+  }
+  return mask;
+}
+
+bool rasterizeSamples(const ImageView& block, const SnappedTriangle& t, int x, int y, int samples,
+  const DepthView* depth, const TextureView* texture, RasterResult& result)
+{
+  SnappedTriangle local = t;
+  if (!LocalSamplePositions(t, x, y, samples, local.x, local.y))
+  {
+    return false;
   }
   result = rasterizeSnappedTriangle(
     block, local, PixelRect{ 0, 0, samples, samples }, depth, texture, nullptr, 0);

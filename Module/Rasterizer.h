@@ -288,6 +288,11 @@ inline std::int32_t SampleGridPosition(std::int32_t snapped, int samples)
 /// hold the sample grid's coordinates); the result is otherwise Drawn, Empty or Degenerate.
 bool rasterizeSamples(const ImageView& block, const SnappedTriangle& t, int x, int y, int samples,
   const DepthView* depth, const TextureView* texture, RasterResult& result);
+
+/// The samples of pixel (x, y) that t covers, as rasterizeSamples covers them: bit i + S j for
+/// sample (i, j). reachable receives false (and the result is 0) when a vertex is too far, as for
+/// rasterizeSamples.
+std::uint32_t sampleCoverage(const SnappedTriangle& t, int x, int y, int samples, bool& reachable);
 }
 
 #endif

@@ -236,9 +236,9 @@ int vtkCatadioptricCompositor::RequestData(
     vtkErrorMacro(<< textureError);
     return 0;
   }
-  // DEPTH_BUFFER: an RGBA texture is opaque when every alpha byte is 255.
+  // DEPTH_BUFFER and anti-aliasing: an RGBA texture is opaque when every alpha byte is 255.
   std::vector<char> opaqueTexture(textures.size(), 1);
-  if (depthMode)
+  if (depthMode || samples > 1)
   {
     for (size_t t = 0; t < textures.size(); ++t)
     {
@@ -416,7 +416,7 @@ int vtkCatadioptricCompositor::RequestData(
     idView.rowStride = -static_cast<std::ptrdiff_t>(width);
     const double* color = this->BackgroundColor;
     this->Edges->Draw(
-      view, idView, *this->Bins, textures,
+      view, idView, *this->Bins, textures, opaqueTexture,
       [&](int x, int y, std::uint8_t rgba[4]) {
         if (frameData)
         {

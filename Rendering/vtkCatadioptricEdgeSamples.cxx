@@ -48,11 +48,194 @@ PixelBox Box(
     std::min(width - 1, pixel(std::max({ x[0], x[1], x[2] }))),
     std::min(rect.y1 - 1, pixel(std::max({ y[0], y[1], y[2] }))) };
 }
+
+// Calls f(x, y, e) for the edge pixels (columns, row starts `rows` for the rows of rect) inside
+// box, e their index.
+template<typename F>
+void ForEdgePixels(const PixelBox& box, const catar::PixelRect& rect,
+  const std::vector<int>& columns, const std::vector<int>& rows, F&& f)
+{
+  for (int y = box.y0; y <= box.y1; ++y)
+  {
+    const int* first = columns.data() + rows[y - rect.y0];
+    const int* last = columns.data() + rows[y - rect.y0 + 1];
+    for (const int* c = std::lower_bound(first, last, box.x0); c != last && *c <= box.x1; ++c)
+    {
+      f(*c, y, static_cast<size_t>(c - columns.data()));
+    }
+  }
+}
 } // namespace
+
+// What drawing a band's samples reads.
+struct vtkCatadioptricEdgeSamples::Context
+{
+  const vtkCatadioptricTriangleBins& Bins;
+  const std::vector<catar::TextureView>& Textures;
+  const std::vector<char>& OpaqueTextures;
+  const Background& Fill;
+  int Samples;
+  int Width;
+};
+
+// Every sample starts as the background; the band's triangles are drawn in drawing order.
+void vtkCatadioptricEdgeSamples::DrawInOrder(const Context& c, int b, Band& band, bool depth)
+{
+  const int samples = c.Samples;
+  const int perPixel = samples * samples;
+  const size_t n = band.Columns.size();
+  const catar::PixelRect rect = c.Bins.GetBand(b);
+  band.Skip.assign(n, 0);
+  if (depth)
+  {
+    band.Depths.assign(n * perPixel, std::numeric_limits<float>::infinity());
+  }
+  for (int r = 0; r + rect.y0 < rect.y1; ++r)
+  {
+    for (int e = band.Rows[r]; e < band.Rows[r + 1]; ++e)
+    {
+      std::uint8_t rgba[4];
+      c.Fill(band.Columns[e], rect.y0 + r, rgba);
+      std::uint8_t* s = band.Samples.data() + static_cast<size_t>(e) * perPixel * 4;
+      for (int k = 0; k < perPixel; ++k)
+      {
+        std::copy(rgba, rgba + 4, s + 4 * k);
+      }
+    }
+  }
+  catar::ImageView block{ nullptr, samples, samples, 4 * samples };
+  catar::DepthView blockDepth{ nullptr, samples, samples, samples };
+  catar::SnappedTriangle t;
+  vtkCatadioptricTriangleBins::Info info;
+  c.Bins.ForEachTriangle(b, [&](std::uint32_t ref) {
+    std::int32_t tx[3], ty[3];
+    c.Bins.GetPositions(ref, tx, ty);
+    bool got = false; // the rest of the triangle read only when it meets an edge pixel
+    const catar::TextureView* texture = nullptr;
+    ForEdgePixels(Box(tx, ty, rect, c.Width), rect, band.Columns, band.Rows,
+      [&](int x, int y, size_t e) {
+        if (!got)
+        {
+          c.Bins.Get(ref, t, info);
+          texture = info.Texture >= 0 ? &c.Textures[info.Texture] : nullptr;
+          blockDepth.write = info.Opaque;
+          got = true;
+        }
+        block.data = band.Samples.data() + e * perPixel * 4;
+        blockDepth.data = depth ? band.Depths.data() + e * perPixel : nullptr;
+        catar::RasterResult result;
+        if (!catar::rasterizeSamples(
+              block, t, x, y, samples, depth ? &blockDepth : nullptr, texture, result))
+        {
+          band.Skip[e] = 1;
+        }
+      });
+  });
+}
+
+// Painter order with opaque triangles only: the nearest triangle (last in the order) that covers
+// a sample is the one it shows, so the triangles are visited nearest first and each sample is
+// drawn once, by the first that covers it; hidden triangles cost a coverage test. The samples no
+// triangle covers are the background. False, at the first triangle that is not opaque (which
+// blends with what is behind it): the band is then drawn in order.
+bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& band)
+{
+  const int samples = c.Samples;
+  const int perPixel = samples * samples;
+  const std::uint32_t full = (1u << perPixel) - 1u; // at most 16 samples
+  const size_t n = band.Columns.size();
+  const catar::PixelRect rect = c.Bins.GetBand(b);
+  band.Skip.assign(n, 0);
+  band.Done.assign(n, 0);
+  std::uint8_t scratch[4 * catar::kMaxEdgeSamples * catar::kMaxEdgeSamples];
+  const catar::ImageView block{ scratch, samples, samples, 4 * samples };
+  catar::SnappedTriangle t;
+  vtkCatadioptricTriangleBins::Info info;
+  bool opaque = true;
+  c.Bins.ForEachTriangleReverse(b, [&](std::uint32_t ref) {
+    if (!opaque)
+    {
+      return;
+    }
+    std::int32_t tx[3], ty[3];
+    c.Bins.GetPositions(ref, tx, ty);
+    bool got = false;
+    const catar::TextureView* texture = nullptr;
+    ForEdgePixels(Box(tx, ty, rect, c.Width), rect, band.Columns, band.Rows,
+      [&](int x, int y, size_t e) {
+        if (band.Done[e] == full || !opaque)
+        {
+          return;
+        }
+        if (!got)
+        {
+          c.Bins.Get(ref, t, info);
+          texture = info.Texture >= 0 ? &c.Textures[info.Texture] : nullptr;
+          opaque = (info.Texture < 0 || c.OpaqueTextures[info.Texture]) && t.rgba[0][3] >= 1.0f &&
+            t.rgba[1][3] >= 1.0f && t.rgba[2][3] >= 1.0f;
+          got = true;
+          if (!opaque)
+          {
+            return;
+          }
+        }
+        bool reachable = false;
+        const std::uint32_t mask =
+          catar::sampleCoverage(t, x, y, samples, reachable) & ~band.Done[e];
+        if (!reachable)
+        {
+          band.Skip[e] = 1;
+          band.Done[e] = full;
+          return;
+        }
+        if (!mask)
+        {
+          return;
+        }
+        // Opaque: the covered samples get the triangle's colour whatever was under them.
+        catar::RasterResult result;
+        catar::rasterizeSamples(block, t, x, y, samples, nullptr, texture, result);
+        std::uint8_t* s = band.Samples.data() + e * perPixel * 4;
+        for (int k = 0; k < perPixel; ++k)
+        {
+          if ((mask >> k) & 1u)
+          {
+            std::copy(scratch + 4 * k, scratch + 4 * k + 4, s + 4 * k);
+          }
+        }
+        band.Done[e] |= mask;
+      });
+  });
+  if (!opaque)
+  {
+    return false;
+  }
+  for (int r = 0; r + rect.y0 < rect.y1; ++r)
+  {
+    for (int e = band.Rows[r]; e < band.Rows[r + 1]; ++e)
+    {
+      if (band.Done[e] == full)
+      {
+        continue;
+      }
+      std::uint8_t rgba[4];
+      c.Fill(band.Columns[e], rect.y0 + r, rgba);
+      std::uint8_t* s = band.Samples.data() + static_cast<size_t>(e) * perPixel * 4;
+      for (int k = 0; k < perPixel; ++k)
+      {
+        if (!((band.Done[e] >> k) & 1u))
+        {
+          std::copy(rgba, rgba + 4, s + 4 * k);
+        }
+      }
+    }
+  }
+  return true;
+}
 
 void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar::IdView& ids,
   const vtkCatadioptricTriangleBins& bins, const std::vector<catar::TextureView>& textures,
-  const Background& background, bool depth)
+  const std::vector<char>& opaqueTextures, const Background& background, bool depth)
 {
   const int width = view.width;
   const int height = view.height;
@@ -163,8 +346,8 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
     band.Rows.push_back(static_cast<int>(band.Columns.size()));
   });
 
-  // The samples of each band's edge pixels, drawn from the band's triangles in drawing order,
-  // then their mean. Writes only the band's own pixels.
+  // The samples of each band's edge pixels, then their mean. Writes only the band's own pixels.
+  const Context context{ bins, textures, opaqueTextures, background, samples, width };
   vtkCatadioptricParallel::ForEachIndex(0, nBands, [&](vtkIdType i) {
     const int b = bins.GetBandByLoad(static_cast<int>(i));
     Band& band = this->Bands[b];
@@ -173,67 +356,12 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
     {
       return;
     }
-    const catar::PixelRect rect = bins.GetBand(b);
     band.Samples.resize(n * perPixel * 4);
-    band.Skip.assign(n, 0);
-    if (depth)
+    if (depth || !DrawFrontToBack(context, b, band))
     {
-      band.Depths.assign(n * perPixel, std::numeric_limits<float>::infinity());
+      DrawInOrder(context, b, band, depth);
     }
-    for (int r = 0; r + rect.y0 < rect.y1; ++r)
-    {
-      for (int e = band.Rows[r]; e < band.Rows[r + 1]; ++e)
-      {
-        std::uint8_t rgba[4];
-        background(band.Columns[e], rect.y0 + r, rgba);
-        std::uint8_t* s = band.Samples.data() + static_cast<size_t>(e) * perPixel * 4;
-        for (int k = 0; k < perPixel; ++k)
-        {
-          std::copy(rgba, rgba + 4, s + 4 * k);
-        }
-      }
-    }
-    catar::ImageView block;
-    block.width = samples;
-    block.height = samples;
-    block.rowStride = 4 * samples;
-    catar::DepthView blockDepth;
-    blockDepth.width = samples;
-    blockDepth.height = samples;
-    blockDepth.rowStride = samples;
-    catar::SnappedTriangle t;
-    vtkCatadioptricTriangleBins::Info info;
-    bins.ForEachTriangle(b, [&](std::uint32_t ref) {
-      std::int32_t tx[3], ty[3];
-      bins.GetPositions(ref, tx, ty);
-      const PixelBox box = Box(tx, ty, rect, width);
-      bool got = false; // the rest of the triangle read only when it meets an edge pixel
-      const catar::TextureView* texture = nullptr;
-      for (int y = box.y0; y <= box.y1; ++y)
-      {
-        const int* first = band.Columns.data() + band.Rows[y - rect.y0];
-        const int* last = band.Columns.data() + band.Rows[y - rect.y0 + 1];
-        for (const int* c = std::lower_bound(first, last, box.x0); c != last && *c <= box.x1; ++c)
-        {
-          if (!got)
-          {
-            bins.Get(ref, t, info);
-            texture = info.Texture >= 0 ? &textures[info.Texture] : nullptr;
-            blockDepth.write = info.Opaque;
-            got = true;
-          }
-          const size_t e = static_cast<size_t>(c - band.Columns.data());
-          block.data = band.Samples.data() + e * perPixel * 4;
-          blockDepth.data = depth ? band.Depths.data() + e * perPixel : nullptr;
-          catar::RasterResult result;
-          if (!catar::rasterizeSamples(
-                block, t, *c, y, samples, depth ? &blockDepth : nullptr, texture, result))
-          {
-            band.Skip[e] = 1;
-          }
-        }
-      }
-    });
+    const catar::PixelRect rect = bins.GetBand(b);
     for (int r = 0; r + rect.y0 < rect.y1; ++r)
     {
       for (int e = band.Rows[r]; e < band.Rows[r + 1]; ++e)

@@ -13,7 +13,9 @@
  *  - every sample (catar::rasterizeSamples: the centres of the pixel's S x S sub-pixels) starts as
  *    the background pixel and receives the band's triangles in the drawing order, with the
  *    compositor's rules (coverage, "over" compositing, textures, and with a depth buffer a depth
- *    per sample);
+ *    per sample). In painter order, when the band's triangles that meet edge pixels are opaque,
+ *    the same result is found nearest first: each sample is drawn once, by the nearest triangle
+ *    that covers it, and the triangles it hides cost only a coverage test;
  *  - the pixel's colour becomes the mean of its samples (each channel rounded to nearest).
  * Interior pixels keep the centre-sampled colour (opaque interiors cost nothing more). The id
  * buffer keeps the centre's triangle. The triangles must have been binned with
@@ -47,10 +49,11 @@ public:
   using Background = std::function<void(int x, int y, std::uint8_t rgba[4])>;
 
   /// Redraws the edge pixels of view (drawn at pixel centres from bins, ids written into ids).
-  /// depth: with a depth buffer (opaque triangles write depth per sample, the others test it).
+  /// opaqueTextures: per texture, whether every texel's alpha is 255. depth: with a depth buffer
+  /// (opaque triangles write depth per sample, the others test it).
   void Draw(const catar::ImageView& view, const catar::IdView& ids,
     const vtkCatadioptricTriangleBins& bins, const std::vector<catar::TextureView>& textures,
-    const Background& background, bool depth);
+    const std::vector<char>& opaqueTextures, const Background& background, bool depth);
 
   /// Edge pixels of the last Draw(), and those left as drawn at their centres (a vertex too far).
   vtkIdType GetNumberOfEdgePixels() const { return this->NumberOfEdgePixels; }
@@ -66,7 +69,11 @@ private:
     std::vector<float> Depths;         // S x S per edge pixel (depth buffer)
     std::vector<std::uint8_t> Skip;    // 1: leave the pixel as drawn (a vertex too far)
     std::vector<std::uint8_t> Mask;    // 1 per edge pixel of the band's rows (finding them)
+    std::vector<std::uint32_t> Done;   // per edge pixel, the samples drawn (front to back)
   };
+  struct Context;
+  static void DrawInOrder(const Context& c, int b, Band& band, bool depth);
+  static bool DrawFrontToBack(const Context& c, int b, Band& band);
   std::vector<Band> Bands;
   vtkIdType NumberOfEdgePixels = 0;
   vtkIdType NumberOfUnsampled = 0;

@@ -141,6 +141,19 @@ public:
     }
   }
 
+  /// ForEachTriangle in the reverse order (nearest first in painter order).
+  template<typename F>
+  void ForEachTriangleReverse(int b, F&& f) const
+  {
+    for (auto part = this->Parts.rbegin(); part != this->Parts.rend(); ++part)
+    {
+      for (std::uint32_t i = part->Start[b + 1]; i > part->Start[b]; --i)
+      {
+        f(part->Refs[i - 1]);
+      }
+    }
+  }
+
   /// Triangle `ref`: its vertices as rasterizeSnappedTriangle takes them, and its drawing state.
   void Get(std::uint32_t ref, catar::SnappedTriangle& t, Info& info) const;
   /// Triangle `ref`'s snapped vertex positions only (1/256 px).

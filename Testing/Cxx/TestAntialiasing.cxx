@@ -5,12 +5,16 @@
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricRayTracer.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCubeSource.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
+#include "vtkTrivialProducer.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "TestUtilities.h"
 
@@ -53,7 +57,7 @@ struct Render
 };
 
 Render Fast(vtkCatadioptricCamera* camera, vtkAlgorithmOutput* mesh, vtkImageData* frame,
-  int samples, bool depth = false)
+  int samples, bool depth = false, double opacity = 1.0, const char* colors = "")
 {
   vtkNew<vtkCatadioptricProjection> projection;
   projection->SetInputConnection(mesh);
@@ -64,8 +68,9 @@ Render Fast(vtkCatadioptricCamera* camera, vtkAlgorithmOutput* mesh, vtkImageDat
   vtkNew<vtkCatadioptricCompositor> compositor;
   compositor->SetFrameData(frame);
   compositor->AddMeshConnection(sort->GetOutputPort());
-  compositor->SetColorArrayName("");
+  compositor->SetColorArrayName(colors);
   compositor->SetColor(kColor[0], kColor[1], kColor[2]);
+  compositor->SetOpacity(opacity);
   compositor->SetAntialias(samples > 1);
   compositor->SetAntialiasSamples(std::max(2, samples));
   compositor->SetVisibility(
@@ -208,6 +213,58 @@ TEST(Antialiasing, DepthBufferSamplesAgreeWithPainterOrder)
   for (size_t i = 0; i < painter.rgba.size(); ++i)
   {
     differ += std::abs(int(painter.rgba[i]) - int(depth.rgba[i])) > 1;
+  }
+  EXPECT_EQ(differ, 0);
+}
+
+TEST(Antialiasing, NearestFirstMatchesDrawingInOrder)
+{
+  // Opaque triangles are sampled nearest first; an opacity a hair below 1 makes the compositor
+  // draw every sample in painter order instead. A sphere in front of a box: silhouettes and an
+  // occlusion edge.
+  vtkNew<vtkCatadioptricCamera> camera;
+  catar_test::SetSmallDemoCamera(camera);
+  auto frame = Frame(camera->GetImageWidth(), camera->GetImageHeight());
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.1, 0.2, 1.0);
+  sphere->SetRadius(0.05);
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(16);
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(0.05, 0.2, 0.25, 0.35, 0.9, 1.1);
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkTriangleFilter> box;
+  box->SetInputConnection(cube->GetOutputPort());
+  both->AddInputConnection(box->GetOutputPort());
+  // A colour per point, from its position: every triangle differs from those behind it.
+  both->Update();
+  vtkNew<vtkPolyData> mesh;
+  mesh->ShallowCopy(both->GetOutput());
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    colors->InsertNextTuple3(std::fmod(p[0] * 5000, 255), std::fmod(p[1] * 7000, 255),
+      std::fmod(p[2] * 3000, 255));
+  }
+  mesh->GetPointData()->AddArray(colors);
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(mesh);
+  const Render nearest = Fast(camera, producer->GetOutputPort(), frame, 4, false, 1.0, "Colors");
+  const Render inOrder =
+    Fast(camera, producer->GetOutputPort(), frame, 4, false, 0.9999, "Colors");
+  ASSERT_GT(nearest.edgePixels, 100);
+  long differ = 0;
+  for (size_t i = 0; i < nearest.rgba.size(); i += 4)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      differ += std::abs(int(nearest.rgba[i + k]) - int(inOrder.rgba[i + k])) > 1;
+    }
   }
   EXPECT_EQ(differ, 0);
 }

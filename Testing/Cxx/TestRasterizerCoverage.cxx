@@ -633,13 +633,17 @@ TEST(Rasterizer, EdgeSamplesAreTheCentresOfALargerImage)
           Image block(samples, samples);
           RasterResult result;
           ASSERT_TRUE(rasterizeSamples(block.view(), t, x, y, samples, nullptr, nullptr, result));
+          bool reachable = false;
+          const std::uint32_t mask = sampleCoverage(t, x, y, samples, reachable);
+          ASSERT_TRUE(reachable);
           for (int j = 0; j < samples; ++j)
           {
             for (int i = 0; i < samples; ++i)
             {
               const bool a = block.at(i, j)[3] != 0;
               const bool b = big.at(samples * x + i, samples * y + j)[3] != 0;
-              mismatches += a != b;
+              const bool m = (mask >> (i + samples * j)) & 1u;
+              mismatches += (a != b) + (m != b);
               covered += a;
             }
           }
@@ -694,6 +698,9 @@ TEST(Rasterizer, EdgeSamplesRightOfAnEdge)
   RasterResult result;
   EXPECT_FALSE(rasterizeSamples(block.view(), far, 1, 1, 4, nullptr, nullptr, result));
   EXPECT_EQ(block.at(0, 0)[3], 0);
+  bool reachable = true;
+  EXPECT_EQ(sampleCoverage(far, 1, 1, 4, reachable), 0u);
+  EXPECT_FALSE(reachable);
 }
 
 } // namespace
