@@ -228,6 +228,64 @@ private:
     this->Refine(ab, bc, ca, depth + 1);
   }
 
+  // Splits exactly the edges of seen triangle (a, b, c) that bend more than the tolerance, at
+  // their midpoints (one edge: two pieces; two: three; three: four), and refines the pieces. The
+  // decision is the edge's own, so the triangle across it splits it too, at the same point: the
+  // pieces meet their neighbours' without cracks. False when no edge bends too much.
+  bool SplitBentEdges(int a, int b, int c, int depth)
+  {
+    const int corner[3] = { a, b, c };
+    int mid[3];
+    bool bent[3];
+    int count = 0;
+    for (int i = 0; i < 3; ++i)
+    {
+      const int p = corner[i], q = corner[(i + 1) % 3];
+      mid[i] = this->Midpoint(p, q);
+      bent[i] = Bend(this->Nodes[p].projected, this->Nodes[q].projected,
+                  this->Nodes[mid[i]].projected) > this->Options.bendTolerance;
+      count += bent[i] ? 1 : 0;
+    }
+    if (count == 0)
+    {
+      return false;
+    }
+    if (count == 3)
+    {
+      this->Split(a, b, c, depth);
+      return true;
+    }
+    // Turned so that edge (p, q) bends and, with two bent edges, (q, r) too; (r, p) does not.
+    int k = 0;
+    while (!(bent[k] && !bent[(k + 2) % 3]))
+    {
+      ++k;
+    }
+    const int p = corner[k], q = corner[(k + 1) % 3], r = corner[(k + 2) % 3];
+    const int pq = mid[k];
+    if (count == 1)
+    {
+      this->Refine(p, pq, r, depth + 1);
+      this->Refine(pq, q, r, depth + 1);
+      return true;
+    }
+    const int qr = mid[(k + 1) % 3];
+    this->Refine(pq, q, qr, depth + 1);
+    // The quadrilateral p, pq, qr, r cut along its shorter diagonal in the image.
+    if ((this->Pixel(p) - this->Pixel(qr)).squaredNorm() <=
+      (this->Pixel(pq) - this->Pixel(r)).squaredNorm())
+    {
+      this->Refine(p, pq, qr, depth + 1);
+      this->Refine(p, qr, r, depth + 1);
+    }
+    else
+    {
+      this->Refine(p, pq, r, depth + 1);
+      this->Refine(pq, qr, r, depth + 1);
+    }
+    return true;
+  }
+
   void Refine(int a, int b, int c, int depth)
   {
     const int seen = int(this->IsSeen(a)) + int(this->IsSeen(b)) + int(this->IsSeen(c));
@@ -235,18 +293,9 @@ private:
       this->Pieces + 4 <= static_cast<std::size_t>(this->Options.maxPiecesPerTriangle);
     if (seen == 3)
     {
-      if (deeper && this->Options.bendTolerance > 0.0)
+      if (deeper && this->Options.bendTolerance > 0.0 && this->SplitBentEdges(a, b, c, depth))
       {
-        const int ab = this->Midpoint(a, b), bc = this->Midpoint(b, c), ca = this->Midpoint(c, a);
-        const Node &na = this->Nodes[a], &nb = this->Nodes[b], &nc = this->Nodes[c];
-        const double bend = std::max({ Bend(na.projected, nb.projected, this->Nodes[ab].projected),
-          Bend(nb.projected, nc.projected, this->Nodes[bc].projected),
-          Bend(nc.projected, na.projected, this->Nodes[ca].projected) });
-        if (bend > this->Options.bendTolerance)
-        {
-          this->Split(a, b, c, depth);
-          return;
-        }
+        return;
       }
       this->Emit(a, b, c);
       return;

@@ -250,3 +250,73 @@ TEST(ImageTessellation, FatesOfManyTrianglesAtOnce)
               << ", tessellated " << counts[2] << std::endl;
   }
 }
+
+// Two triangles that share an edge, tessellated each on its own, put the same points on it: the
+// pieces on either side meet without T-junctions, whose cracks would show as holes. Quads of all
+// sizes around the rig, seen whole, at several tolerances.
+TEST(ImageTessellation, NeighboursSplitTheirSharedEdgeAlike)
+{
+  const CameraModel model = catar_test::DemoCameraModel();
+  const Projector proj(model);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.5, 0.5), s(0.05, 0.4);
+  int quads = 0, splitEdges = 0;
+  for (int n = 0; n < 300; ++n)
+  {
+    const Vec3 c(u(rng), u(rng), u(rng) - 0.35);
+    const double size = s(rng);
+    std::array<Vec3, 4> q;
+    for (Vec3& p : q)
+    {
+      p = model.CameraToWorld(c + size * Vec3(u(rng), u(rng), u(rng)));
+    }
+    // Triangles (0, 1, 2) and (2, 1, 3) share the edge 1-2, traversed in opposite directions.
+    const std::array<Vec3, 3> first{ { q[0], q[1], q[2] } }, second{ { q[2], q[1], q[3] } };
+    // Seen whole: the corners and points all over both triangles (the pieces of a triangle that
+    // crosses the visibility boundary are cut at it, one triangle at a time).
+    bool seen = true;
+    for (int i = 0; i <= 16 && seen; ++i)
+    {
+      for (int j = 0; i + j <= 16 && seen; ++j)
+      {
+        const double wi = i / 16.0, wj = j / 16.0;
+        seen =
+          HasProjection(proj.ProjectWorld(wi * q[0] + wj * q[1] + (1 - wi - wj) * q[2]).status) &&
+          HasProjection(proj.ProjectWorld(wi * q[3] + wj * q[1] + (1 - wi - wj) * q[2]).status);
+      }
+    }
+    if (!seen)
+    {
+      continue;
+    }
+    for (const double bend : { 4.0, 1.0, 0.25 })
+    {
+      TessellationOptions options;
+      options.bendTolerance = bend;
+      const Pieces a = TessellateOne(proj, first, options),
+                   b = TessellateOne(proj, second, options);
+      // The new points on the shared edge (weight 0 at the third corner), as world points.
+      auto onEdge = [](const Pieces& r, int third) {
+        std::vector<std::array<double, 3>> points;
+        for (const TessellatedPoint& p : r.out.points)
+        {
+          if (p.weights[third] == 0.0)
+          {
+            points.push_back({ p.world.x(), p.world.y(), p.world.z() });
+          }
+        }
+        std::sort(points.begin(), points.end());
+        return points;
+      };
+      const auto pa = onEdge(a, 0), pb = onEdge(b, 2);
+      EXPECT_EQ(pa, pb) << "quad " << n << ", tolerance " << bend << ": " << pa.size() << " vs "
+                        << pb.size() << " points on the shared edge";
+      splitEdges += pa.empty() ? 0 : 1;
+    }
+    ++quads;
+  }
+  std::cout << "[ shared   ] " << quads << " quads seen whole; the shared edge split in "
+            << splitEdges << " of " << 3 * quads << " tessellations" << std::endl;
+  EXPECT_GT(quads, 100);
+  EXPECT_GT(splitEdges, 50);
+}
