@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 
 namespace
 {
@@ -48,6 +49,44 @@ PixelBox Box(
     std::min(width - 1, pixel(std::max({ x[0], x[1], x[2] }))),
     std::min(rect.y1 - 1, pixel(std::max({ y[0], y[1], y[2] }))) };
 }
+
+// An opaque untextured triangle's colour as linear functions of the pixel position (the
+// rasteriser's Gouraud planes, through the snapped vertices and their clamped colours).
+struct ColourPlanes
+{
+  double x0, y0;              // vertex 0, pixels
+  double c0[3], dx[3], dy[3]; // value at vertex 0 and steps, per channel
+
+  explicit ColourPlanes(const catar::SnappedTriangle& t)
+  {
+    const double inv = 1.0 / (1 << catar::kRasterSubPixelBits);
+    x0 = t.x[0] * inv;
+    y0 = t.y[0] * inv;
+    const double x10 = (t.x[1] - t.x[0]) * inv, y10 = (t.y[1] - t.y[0]) * inv;
+    const double x20 = (t.x[2] - t.x[0]) * inv, y20 = (t.y[2] - t.y[0]) * inv;
+    const double area = 1.0 / (x10 * y20 - y10 * x20);
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      const auto clamp = [](float v) { return std::min(1.0, std::max(0.0, double(v))); };
+      c0[ch] = clamp(t.rgba[0][ch]);
+      const double d1 = clamp(t.rgba[1][ch]) - c0[ch], d2 = clamp(t.rgba[2][ch]) - c0[ch];
+      dx[ch] = (d1 * y20 - d2 * y10) * area;
+      dy[ch] = (d2 * x10 - d1 * x20) * area;
+    }
+  }
+
+  // The bytes the rasteriser writes for an opaque triangle at (x, y).
+  void At(double x, double y, std::uint8_t* rgba) const
+  {
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      const double v = std::min(1.0, std::max(0.0, c0[ch] + dx[ch] * (x - x0) + dy[ch] * (y - y0)));
+      rgba[ch] =
+        static_cast<std::uint8_t>(std::min(static_cast<int>(255.0f * float(v) + 0.5f), 255));
+    }
+    rgba[3] = 255;
+  }
+};
 
 // Calls f(x, y, e) for the edge pixels (columns, row starts `rows` for the rows of rect) inside
 // box, e their index.
@@ -112,8 +151,8 @@ void vtkCatadioptricEdgeSamples::DrawInOrder(const Context& c, int b, Band& band
     c.Bins.GetPositions(ref, tx, ty);
     bool got = false; // the rest of the triangle read only when it meets an edge pixel
     const catar::TextureView* texture = nullptr;
-    ForEdgePixels(Box(tx, ty, rect, c.Width), rect, band.Columns, band.Rows,
-      [&](int x, int y, size_t e) {
+    ForEdgePixels(
+      Box(tx, ty, rect, c.Width), rect, band.Columns, band.Rows, [&](int x, int y, size_t e) {
         if (!got)
         {
           c.Bins.Get(ref, t, info);
@@ -161,8 +200,9 @@ bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& 
     c.Bins.GetPositions(ref, tx, ty);
     bool got = false;
     const catar::TextureView* texture = nullptr;
-    ForEdgePixels(Box(tx, ty, rect, c.Width), rect, band.Columns, band.Rows,
-      [&](int x, int y, size_t e) {
+    std::optional<ColourPlanes> planes;
+    ForEdgePixels(
+      Box(tx, ty, rect, c.Width), rect, band.Columns, band.Rows, [&](int x, int y, size_t e) {
         if (band.Done[e] == full || !opaque)
         {
           return;
@@ -173,6 +213,10 @@ bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& 
           texture = info.Texture >= 0 ? &c.Textures[info.Texture] : nullptr;
           opaque = (info.Texture < 0 || c.OpaqueTextures[info.Texture]) && t.rgba[0][3] >= 1.0f &&
             t.rgba[1][3] >= 1.0f && t.rgba[2][3] >= 1.0f;
+          if (!texture)
+          {
+            planes.emplace(t);
+          }
           got = true;
           if (!opaque)
           {
@@ -192,15 +236,27 @@ bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& 
         {
           return;
         }
-        // Opaque: the covered samples get the triangle's colour whatever was under them.
-        catar::RasterResult result;
-        catar::rasterizeSamples(block, t, x, y, samples, nullptr, texture, result);
+        // Opaque: the covered samples get the triangle's colour whatever was under them; an
+        // untextured one's found at the samples themselves.
         std::uint8_t* s = band.Samples.data() + e * perPixel * 4;
+        if (texture)
+        {
+          catar::RasterResult result;
+          catar::rasterizeSamples(block, t, x, y, samples, nullptr, texture, result);
+        }
         for (int k = 0; k < perPixel; ++k)
         {
           if ((mask >> k) & 1u)
           {
-            std::copy(scratch + 4 * k, scratch + 4 * k + 4, s + 4 * k);
+            if (texture)
+            {
+              std::copy(scratch + 4 * k, scratch + 4 * k + 4, s + 4 * k);
+            }
+            else
+            {
+              planes->At(x - 0.5 + (k % samples + 0.5) / samples,
+                y - 0.5 + (k / samples + 0.5) / samples, s + 4 * k);
+            }
           }
         }
         band.Done[e] |= mask;
@@ -263,45 +319,16 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
     }
     const catar::PixelRect rect = bins.GetBand(b);
     band.Mask.assign(static_cast<size_t>(width) * (rect.y1 - rect.y0), 0);
-    for (int y = rect.y0; y < rect.y1; ++y)
-    {
-      std::uint8_t* mask = band.Mask.data() + static_cast<size_t>(width) * (y - rect.y0);
-      const catar::RasterId* row = ids.at(0, y);
-      const catar::RasterId* up = y > 0 ? ids.at(0, y - 1) : nullptr;
-      const catar::RasterId* down = y + 1 < height ? ids.at(0, y + 1) : nullptr;
-      for (int x = 0; x < width; ++x)
-      {
-        const catar::RasterId id = row[x];
-        const int xa = x > 0 ? x - 1 : x, xb = x + 1 < width ? x + 1 : x;
-        bool same = row[xa] == id && row[xb] == id;
-        for (const catar::RasterId* r : { up, down })
-        {
-          same = same && (!r || (r[xa] == id && r[x] == id && r[xb] == id));
-        }
-        if (same)
-        {
-          continue;
-        }
-        // The eight neighbours: a corner of an object can reach into a pixel diagonally.
-        const std::uint8_t* p = view.pixel(x, y);
-        bool edge = false;
-        for (int dy = -1; dy <= 1 && !edge; ++dy)
-        {
-          const catar::RasterId* r = dy < 0 ? up : dy > 0 ? down : row;
-          for (int nx = xa; r && nx <= xb && !edge; ++nx)
-          {
-            edge = IsEdge(id, r[nx], p, view.pixel(nx, y + dy));
-          }
-        }
-        mask[x] = edge ? 1 : 0;
-      }
-    }
     // A pixel whose centre shows the frame and one of whose samples a triangle covers: the tips
-    // and slivers that reach into a pixel without covering its centre nor any neighbour's.
+    // and slivers that reach into a pixel without covering its centre nor any neighbour's. And
+    // the columns the band's triangles reach (no edge outside them but next to them).
+    int x0 = width, x1 = -1;
     bins.ForEachTriangle(b, [&](std::uint32_t ref) {
       std::int32_t tx[3], ty[3];
       bins.GetPositions(ref, tx, ty);
       const PixelBox box = Box(tx, ty, rect, width);
+      x0 = std::min(x0, box.x0);
+      x1 = std::max(x1, box.x1);
       const std::int32_t fx[3] = { catar::SampleGridPosition(tx[0], samples),
         catar::SampleGridPosition(tx[1], samples), catar::SampleGridPosition(tx[2], samples) };
       const std::int32_t fy[3] = { catar::SampleGridPosition(ty[0], samples),
@@ -331,6 +358,40 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
         }
       }
     });
+    // Neighbours showing different triangles (every pixel looks at its eight neighbours).
+    for (int y = rect.y0; y < rect.y1; ++y)
+    {
+      std::uint8_t* mask = band.Mask.data() + static_cast<size_t>(width) * (y - rect.y0);
+      const catar::RasterId* row = ids.at(0, y);
+      const catar::RasterId* up = y > 0 ? ids.at(0, y - 1) : nullptr;
+      const catar::RasterId* down = y + 1 < height ? ids.at(0, y + 1) : nullptr;
+      for (int x = std::max(0, x0 - 1); x <= std::min(width - 1, x1 + 1); ++x)
+      {
+        const catar::RasterId id = row[x];
+        const int xa = x > 0 ? x - 1 : x, xb = x + 1 < width ? x + 1 : x;
+        bool same = row[xa] == id && row[xb] == id;
+        for (const catar::RasterId* r : { up, down })
+        {
+          same = same && (!r || (r[xa] == id && r[x] == id && r[xb] == id));
+        }
+        if (same || mask[x])
+        {
+          continue;
+        }
+        // The eight neighbours: a corner of an object can reach into a pixel diagonally.
+        const std::uint8_t* p = view.pixel(x, y);
+        bool edge = false;
+        for (int dy = -1; dy <= 1 && !edge; ++dy)
+        {
+          const catar::RasterId* r = dy < 0 ? up : dy > 0 ? down : row;
+          for (int nx = xa; r && nx <= xb && !edge; ++nx)
+          {
+            edge = IsEdge(id, r[nx], p, view.pixel(nx, y + dy));
+          }
+        }
+        mask[x] = edge ? 1 : 0;
+      }
+    }
     for (int y = rect.y0; y < rect.y1; ++y)
     {
       band.Rows.push_back(static_cast<int>(band.Columns.size()));
