@@ -9,6 +9,11 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace
@@ -16,6 +21,28 @@ namespace
 constexpr vtkIdType kGrain = 1024;
 // The most pieces one execution makes (all split triangles together).
 constexpr std::size_t kMaxPieces = std::size_t(1) << 22;
+// The most rounds of passing edge splits to neighbours.
+constexpr int kMaxRounds = 8;
+
+// An edge of the input mesh by its end points' positions, the lexicographically smaller first:
+// faces that do not share point ids (a box with a normal per face) still share their edges.
+using Position = std::array<double, 3>;
+using EdgeKey = std::pair<Position, Position>;
+struct EdgeKeyHash
+{
+  std::size_t operator()(const EdgeKey& k) const
+  {
+    std::size_t h = 0;
+    for (const Position* p : { &k.first, &k.second })
+    {
+      for (const double c : *p)
+      {
+        h = h * 1000003u ^ std::hash<double>()(c);
+      }
+    }
+    return h;
+  }
+};
 
 // The triangle's corners: world points and projections (status, pixel and mirror point; the
 // rest is not read).
@@ -34,6 +61,16 @@ void Corners(vtkPoints* points, const unsigned char* status, const double* pixel
     projected[k].mirrorPoint = catar::Vec3(m[0], m[1], m[2]);
   }
 }
+// Edge (a, b) of the input and whether a comes first in its key (the parameter along the edge is
+// then counted from a).
+EdgeKey Key(vtkPoints* points, vtkIdType a, vtkIdType b, bool& forward)
+{
+  Position pa, pb;
+  points->GetPoint(a, pa.data());
+  points->GetPoint(b, pb.data());
+  forward = pa < pb;
+  return forward ? EdgeKey(pa, pb) : EdgeKey(pb, pa);
+}
 } // namespace
 
 vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
@@ -49,51 +86,71 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   }
   vtkPoints* points = input->GetPoints();
   const vtkIdType nPoints = input->GetNumberOfPoints();
-  // Without a bend tolerance only triangles with an unseen corner can need it: none when every
-  // point is seen (the usual frame), found without a pass over the cells.
-  if (!(options.bendTolerance > 0.0) && std::all_of(status, status + nPoints, [](unsigned char s) {
-        return catar::HasProjection(static_cast<catar::ProjectionStatus>(s));
-      }))
+  // With neither tolerance only triangles with an unseen corner can need it: none when every
+  // point is seen, found without a pass over the cells. (With a boundary tolerance, a triangle
+  // seen at its corners may still have a hidden middle: the pass looks at those with long edges.)
+  if (!(options.bendTolerance > 0.0) && !(options.boundaryTolerance > 0.0) &&
+    std::all_of(status, status + nPoints, [](unsigned char s) {
+      return catar::HasProjection(static_cast<catar::ProjectionStatus>(s));
+    }))
   {
     return 0;
   }
   // Which triangles to split: a quick pass on the corners' statuses (all seen, no bend
   // tolerance: kept), then each candidate's fate.
   std::vector<unsigned char> split(static_cast<std::size_t>(nPolys), 0);
-  vtkCatadioptricParallel::For(0, nPolys, kGrain, [&](vtkIdType begin, vtkIdType end) {
-    vtkNew<vtkIdList> scratch;
-    std::vector<vtkIdType> cells;
-    std::vector<std::array<catar::Vec3, 3>> world;
-    std::vector<std::array<catar::ProjectedPoint, 3>> projected;
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      vtkIdType n = 0;
-      const vtkIdType* v = nullptr;
-      polys->GetCellAtId(c, n, v, scratch);
-      if (n != 3)
+  const double check2 = options.interiorCheck * options.interiorCheck;
+  const bool measureAll = options.bendTolerance > 0.0;
+  const bool checkLong = options.boundaryTolerance > 0.0;
+  polys->Visit([&](auto& state) {
+    const auto* offsets = state.GetOffsets()->GetPointer(0);
+    const auto* connectivity = state.GetConnectivity()->GetPointer(0);
+    vtkCatadioptricParallel::For(0, nPolys, kGrain, [&](vtkIdType begin, vtkIdType end) {
+      std::vector<vtkIdType> cells;
+      std::vector<std::array<catar::Vec3, 3>> world;
+      std::vector<std::array<catar::ProjectedPoint, 3>> projected;
+      for (vtkIdType c = begin; c < end; ++c)
       {
-        continue;
+        if (offsets[c + 1] - offsets[c] != 3)
+        {
+          continue;
+        }
+        const vtkIdType v[3] = { static_cast<vtkIdType>(connectivity[offsets[c]]),
+          static_cast<vtkIdType>(connectivity[offsets[c] + 1]),
+          static_cast<vtkIdType>(connectivity[offsets[c] + 2]) };
+        const bool allSeen =
+          catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) &&
+          catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) &&
+          catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]]));
+        // Seen at its corners, no bend tolerance, and no edge long enough to check its middle.
+        if (allSeen && !measureAll)
+        {
+          bool longEdge = false;
+          for (int e = 0; e < 3; ++e)
+          {
+            const double* p = pixels + 2 * v[e];
+            const double* q = pixels + 2 * v[(e + 1) % 3];
+            const double dx = p[0] - q[0], dy = p[1] - q[1];
+            longEdge = longEdge || dx * dx + dy * dy > check2;
+          }
+          if (!checkLong || !longEdge)
+          {
+            continue;
+          }
+        }
+        cells.push_back(c);
+        world.emplace_back();
+        projected.emplace_back();
+        Corners(points, status, pixels, mirrorPoints, v, world.back(), projected.back());
       }
-      const bool allSeen =
-        catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) &&
-        catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) &&
-        catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]]));
-      if (allSeen && !(options.bendTolerance > 0.0))
+      std::vector<catar::TriangleFate> fates(cells.size());
+      catar::TriangleFates(
+        projector, cells.size(), world.data(), projected.data(), options, fates.data());
+      for (std::size_t k = 0; k < cells.size(); ++k)
       {
-        continue;
+        split[cells[k]] = fates[k] == catar::TriangleFate::Tessellate ? 1 : 0;
       }
-      cells.push_back(c);
-      world.emplace_back();
-      projected.emplace_back();
-      Corners(points, status, pixels, mirrorPoints, v, world.back(), projected.back());
-    }
-    std::vector<catar::TriangleFate> fates(cells.size());
-    catar::TriangleFates(
-      projector, cells.size(), world.data(), projected.data(), options, fates.data());
-    for (std::size_t k = 0; k < cells.size(); ++k)
-    {
-      split[cells[k]] = fates[k] == catar::TriangleFate::Tessellate ? 1 : 0;
-    }
+    });
   });
   std::vector<vtkIdType> chosen;
   for (vtkIdType c = 0; c < nPolys; ++c)
@@ -113,22 +170,149 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   bounded.maxPiecesPerTriangle = static_cast<int>(std::max<std::size_t>(4,
     std::min<std::size_t>(
       static_cast<std::size_t>(options.maxPiecesPerTriangle), kMaxPieces / chosen.size())));
+  // Triangles that share an edge must split it alike (else the halves on one side bend away
+  // from the straight edge on the other: a crack). The splits each made on its edges are passed
+  // to the triangles across them, which are tessellated again (or for the first time) with those
+  // splits forced, until no triangle makes a split its neighbour lacks.
   std::vector<catar::Tessellation> pieces(chosen.size());
-  vtkCatadioptricParallel::For(
-    0, static_cast<vtkIdType>(chosen.size()), 1, [&](vtkIdType begin, vtkIdType end) {
-      vtkNew<vtkIdList> ids;
-      for (vtkIdType k = begin; k < end; ++k)
+  std::vector<catar::TriangleEdgeSplits> forced(chosen.size()), made(chosen.size());
+  std::unordered_map<vtkIdType, std::size_t> slot; // cell -> index in chosen
+  for (std::size_t k = 0; k < chosen.size(); ++k)
+  {
+    slot.emplace(chosen[k], k);
+  }
+  std::unordered_map<EdgeKey, std::vector<double>, EdgeKeyHash> edgeSplits; // canonical t
+  std::vector<std::size_t> todo(chosen.size());
+  std::iota(todo.begin(), todo.end(), std::size_t(0));
+  for (int round = 0; !todo.empty() && round < kMaxRounds; ++round)
+  {
+    vtkCatadioptricParallel::For(
+      0, static_cast<vtkIdType>(todo.size()), 1, [&](vtkIdType begin, vtkIdType end) {
+        vtkNew<vtkIdList> ids;
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          const std::size_t k = todo[i];
+          polys->GetCellAtId(chosen[k], ids);
+          const vtkIdType* v = ids->GetPointer(0);
+          std::array<catar::Vec3, 3> world;
+          std::array<catar::ProjectedPoint, 3> projected;
+          Corners(points, status, pixels, mirrorPoints, v, world, projected);
+          pieces[k] = catar::Tessellation();
+          made[k] = catar::TriangleEdgeSplits();
+          // Ids local to this tessellation, renumbered below.
+          catar::TessellateTriangle(projector, chosen[k], { { v[0], v[1], v[2] } }, world,
+            projected, nPoints, bounded, pieces[k], &forced[k], &made[k]);
+        }
+      });
+    // The splits not yet known on each edge.
+    std::vector<EdgeKey> changed;
+    vtkNew<vtkIdList> ids;
+    for (const std::size_t k : todo)
+    {
+      polys->GetCellAtId(chosen[k], ids);
+      for (int e = 0; e < 3; ++e)
       {
-        polys->GetCellAtId(chosen[k], ids);
-        const vtkIdType* v = ids->GetPointer(0);
-        std::array<catar::Vec3, 3> world;
-        std::array<catar::ProjectedPoint, 3> projected;
-        Corners(points, status, pixels, mirrorPoints, v, world, projected);
-        // Ids local to this tessellation, renumbered below.
-        catar::TessellateTriangle(projector, chosen[k], { { v[0], v[1], v[2] } }, world, projected,
-          nPoints, bounded, pieces[k]);
+        bool forward = true;
+        const EdgeKey key = Key(points, ids->GetId(e), ids->GetId((e + 1) % 3), forward);
+        std::vector<double>& known = edgeSplits[key];
+        bool grew = false;
+        for (const double t : made[k].at[e])
+        {
+          const double canonical = forward ? t : 1.0 - t;
+          if (std::find(known.begin(), known.end(), canonical) == known.end())
+          {
+            known.push_back(canonical);
+            grew = true;
+          }
+        }
+        if (grew)
+        {
+          changed.push_back(key);
+        }
       }
-    });
+    }
+    todo.clear();
+    if (changed.empty())
+    {
+      break;
+    }
+    // The triangles on those edges (already tessellated, or with a seen corner), with their
+    // forced splits.
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    std::vector<vtkIdType> touched;
+    for (vtkIdType c = 0; c < nPolys; ++c)
+    {
+      vtkIdType n = 0;
+      const vtkIdType* v = nullptr;
+      polys->GetCellAtId(c, n, v, ids);
+      if (n != 3 ||
+        !(catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) ||
+          catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) ||
+          catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]])) ||
+          slot.count(c)))
+      {
+        continue;
+      }
+      for (int e = 0; e < 3; ++e)
+      {
+        bool forward = true;
+        if (std::binary_search(
+              changed.begin(), changed.end(), Key(points, v[e], v[(e + 1) % 3], forward)))
+        {
+          touched.push_back(c);
+          break;
+        }
+      }
+    }
+    for (const vtkIdType c : touched)
+    {
+      auto found = slot.find(c);
+      if (found == slot.end())
+      {
+        found = slot.emplace(c, chosen.size()).first;
+        chosen.push_back(c);
+        pieces.emplace_back();
+        forced.emplace_back();
+        made.emplace_back();
+      }
+      const std::size_t k = found->second;
+      polys->GetCellAtId(c, ids);
+      for (int e = 0; e < 3; ++e)
+      {
+        bool forward = true;
+        const EdgeKey key = Key(points, ids->GetId(e), ids->GetId((e + 1) % 3), forward);
+        std::vector<double>& at = forced[k].at[e];
+        at.clear();
+        const auto known = edgeSplits.find(key);
+        if (known != edgeSplits.end())
+        {
+          for (const double canonical : known->second)
+          {
+            at.push_back(forward ? canonical : 1.0 - canonical);
+          }
+        }
+        std::sort(at.begin(), at.end());
+      }
+      todo.push_back(k);
+    }
+  }
+  // Output order: the input's.
+  {
+    std::vector<std::size_t> order(chosen.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(),
+      [&](std::size_t x, std::size_t y) { return chosen[x] < chosen[y]; });
+    std::vector<vtkIdType> sortedCells(chosen.size());
+    std::vector<catar::Tessellation> sortedPieces(chosen.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      sortedCells[i] = chosen[order[i]];
+      sortedPieces[i] = std::move(pieces[order[i]]);
+    }
+    chosen.swap(sortedCells);
+    pieces.swap(sortedPieces);
+  }
   added.points.clear();
   added.triangles.clear();
   std::vector<std::vector<catar::TessellatedTriangle>> byCell(chosen.size());

@@ -32,6 +32,11 @@ struct TessellationOptions
   /// Pixels: largest bend of a drawn edge (adaptive tessellation); 0 leaves seen triangles as
   /// they are.
   double bendTolerance = 0.0;
+  /// Pixels: a triangle seen at its corners whose edge is longer than this in the image is
+  /// checked at that edge's midpoint for a hidden middle (the visibility boundary crossing it
+  /// between two seen ends), and cut at the boundary when it has one. Smaller triangles are
+  /// drawn as they are (with boundaryTolerance 0, none is checked).
+  double interiorCheck = 4.0;
   /// The most times an input triangle's edges are halved.
   int maxDepth = 12;
   /// The most triangles one input triangle may become.
@@ -47,6 +52,8 @@ struct TessellatedPoint
   std::array<double, 3> weights{ { 0.0, 0.0, 0.0 } };
   Vec3 world = Vec3::Zero();
   ProjectedPoint projected;
+  /// Placed on the visibility boundary (by bisection), not a split point of an edge.
+  bool boundary = false;
 };
 
 /// The triangles an input triangle became: point ids below the input's point count are input
@@ -63,10 +70,21 @@ struct Tessellation
   std::vector<TessellatedTriangle> triangles;
 };
 
+/// Where pieces split an input triangle's edges: for edge k (from corner k to corner k + 1), the
+/// parameters t in (0, 1) from corner k of the midpoints at which a piece's edge on it is split
+/// (dyadic: 1/2, 1/4, 3/4, ...). Triangles that share an edge split it alike when each is given
+/// the splits the other made (TessellateTriangle's `forced`), so that their pieces meet without
+/// T-junctions, whose cracks would show.
+struct TriangleEdgeSplits
+{
+  std::array<std::vector<double>, 3> at;
+};
+
 /// What becomes of one input triangle.
 enum class TriangleFate : std::uint8_t
 {
-  Keep,      ///< drawn as it is (seen whole, edges within the bend tolerance)
+  Keep,      ///< drawn as it is (seen at its corners and the measured edge midpoints, edges
+             ///< within the bend tolerance)
   Drop,      ///< not seen at all (its vertices, edge midpoints and centroid have no reflection),
              ///< or a corner is not a point (NaN, Inf)
   Tessellate ///< split (crosses the boundary, or bends too much)
@@ -89,10 +107,13 @@ void TriangleFates(const Projector& projector, std::size_t n, const std::array<V
 /// projections, appending its pieces and new points to `out` (the new points' ids start at
 /// inputPointCount + out.points.size()). Returns the number of triangles appended (0: nothing of
 /// it is seen).
+/// forced (may be null): splits its edges must have (sorted, as the neighbours across them made
+/// them); made (may be null) receives the splits it made on its edges.
 std::size_t TessellateTriangle(const Projector& projector, std::int64_t cell,
   const std::array<std::int64_t, 3>& ids, const std::array<Vec3, 3>& world,
   const std::array<ProjectedPoint, 3>& projected, std::int64_t inputPointCount,
-  const TessellationOptions& options, Tessellation& out);
+  const TessellationOptions& options, Tessellation& out, const TriangleEdgeSplits* forced = nullptr,
+  TriangleEdgeSplits* made = nullptr);
 } // namespace catar
 
 #endif

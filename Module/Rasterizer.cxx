@@ -880,8 +880,8 @@ namespace
 {
 // t's positions on the sample grid of pixel (x, y), relative to its first sample (S x, S y);
 // false when a vertex is more than 2^18 pixels away.
-bool LocalSamplePositions(const SnappedTriangle& t, int x, int y, int samples,
-  std::int32_t lx[3], std::int32_t ly[3])
+bool LocalSamplePositions(
+  const SnappedTriangle& t, int x, int y, int samples, std::int32_t lx[3], std::int32_t ly[3])
 {
   constexpr std::int64_t kReach = std::int64_t(1) << (18 + kRasterSubPixelBits);
   const std::int64_t ox = static_cast<std::int64_t>(x) * kOne;

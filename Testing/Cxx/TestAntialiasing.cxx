@@ -1,11 +1,11 @@
 // Anti-aliased compositing (vtkCatadioptricCompositor::Antialias): the edge pixels of objects
 // composited over a frame, against the exact ray tracer with 8 x 8 samples per pixel.
+#include "vtkAppendPolyData.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricRayTracer.h"
-#include "vtkAppendPolyData.h"
 #include "vtkCubeSource.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -248,15 +248,14 @@ TEST(Antialiasing, NearestFirstMatchesDrawingInOrder)
   {
     double p[3];
     mesh->GetPoint(i, p);
-    colors->InsertNextTuple3(std::fmod(p[0] * 5000, 255), std::fmod(p[1] * 7000, 255),
-      std::fmod(p[2] * 3000, 255));
+    colors->InsertNextTuple3(
+      std::fmod(p[0] * 5000, 255), std::fmod(p[1] * 7000, 255), std::fmod(p[2] * 3000, 255));
   }
   mesh->GetPointData()->AddArray(colors);
   vtkNew<vtkTrivialProducer> producer;
   producer->SetOutput(mesh);
   const Render nearest = Fast(camera, producer->GetOutputPort(), frame, 4, false, 1.0, "Colors");
-  const Render inOrder =
-    Fast(camera, producer->GetOutputPort(), frame, 4, false, 0.9999, "Colors");
+  const Render inOrder = Fast(camera, producer->GetOutputPort(), frame, 4, false, 0.9999, "Colors");
   ASSERT_GT(nearest.edgePixels, 100);
   long differ = 0;
   for (size_t i = 0; i < nearest.rgba.size(); i += 4)
