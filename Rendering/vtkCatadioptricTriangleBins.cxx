@@ -458,8 +458,9 @@ void vtkCatadioptricTriangleBins::MakeTriangles(Chunk& chunk)
   const std::uint8_t* states = this->CellStates.data() + m.CellBase;
   const Point* points = this->Points.data();
   const catar::PixelRect image{ 0, 0, this->Opts.Width, this->Opts.Height };
-  // Edge samples: the rows holding a sample the triangle covers, found on the grid of sub-pixel
-  // centres (catar::SampleGridPosition; at most 4 x 2^28 fits in 32 bits).
+  // Edge samples: the rows holding a sample or a pixel centre the triangle covers, samples found
+  // on the grid of sub-pixel centres (catar::SampleGridPosition; at most 4 x 2^28 fits in 32
+  // bits).
   const int samples = this->Opts.Samples;
   const catar::PixelRect fineImage{ 0, 0, samples * this->Opts.Width, samples * this->Opts.Height };
   const std::uint32_t pointBase = static_cast<std::uint32_t>(m.PointBase);
@@ -518,10 +519,16 @@ void vtkCatadioptricTriangleBins::MakeTriangles(Chunk& chunk)
               catar::SampleGridPosition(x[1], samples), catar::SampleGridPosition(x[2], samples) };
             const std::int32_t fy[3] = { catar::SampleGridPosition(y[0], samples),
               catar::SampleGridPosition(y[1], samples), catar::SampleGridPosition(y[2], samples) };
+            // The rows of its samples and of its pixel centres (not samples when S is even).
             const catar::PixelRect fine = catar::coveredPixelBounds(fx, fy, fineImage);
-            rows = fine.y0 < fine.y1
-              ? catar::PixelRect{ 0, fine.y0 / samples, 1, (fine.y1 - 1) / samples + 1 }
-              : catar::PixelRect{};
+            rows = catar::coveredPixelBounds(x, y, image);
+            if (fine.y0 < fine.y1)
+            {
+              const int y0 = fine.y0 / samples, y1 = (fine.y1 - 1) / samples + 1;
+              rows = rows.y0 < rows.y1
+                ? catar::PixelRect{ 0, std::min(rows.y0, y0), 1, std::max(rows.y1, y1) }
+                : catar::PixelRect{ 0, y0, 1, y1 };
+            }
           }
           // Written whether or not it is kept, and kept by moving on: the test goes either way at
           // random, so a branch on it is mispredicted often (measured: 5% faster without).

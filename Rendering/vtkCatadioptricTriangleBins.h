@@ -87,8 +87,8 @@ public:
     bool Ids = false;          ///< per-triangle ids
     /// Samples per pixel side of anti-aliased edges (1: none, at most 4). Above 1 a triangle is
     /// kept when it covers one of the S x S sample points of a pixel (the centres of the pixel's
-    /// S x S sub-pixels), not only when it covers a pixel centre, so that the edge samples see the
-    /// triangles smaller than a pixel.
+    /// S x S sub-pixels) as well as when it covers a pixel centre (not a sample when S is even),
+    /// so that the edge samples see the triangles smaller than a pixel.
     int Samples = 1;
   };
 

@@ -14,6 +14,7 @@
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
 #include "vtkTrivialProducer.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "TestUtilities.h"
@@ -53,6 +54,7 @@ vtkSmartPointer<vtkImageData> Frame(int width, int height)
 struct Render
 {
   std::vector<unsigned char> rgba;
+  std::vector<long long> ids; // VisibleTriangle
   vtkIdType edgePixels = 0;
 };
 
@@ -71,6 +73,7 @@ Render Fast(vtkCatadioptricCamera* camera, vtkAlgorithmOutput* mesh, vtkImageDat
   compositor->SetColorArrayName(colors);
   compositor->SetColor(kColor[0], kColor[1], kColor[2]);
   compositor->SetOpacity(opacity);
+  compositor->OutputVisibleTriangleOn();
   compositor->SetAntialias(samples > 1);
   compositor->SetAntialiasSamples(std::max(2, samples));
   compositor->SetVisibility(
@@ -81,6 +84,8 @@ Render Fast(vtkCatadioptricCamera* camera, vtkAlgorithmOutput* mesh, vtkImageDat
   const auto* p = static_cast<const unsigned char*>(out->GetScalarPointer());
   r.rgba.assign(p, p + 4 * out->GetNumberOfPoints());
   r.edgePixels = compositor->GetNumberOfEdgePixels();
+  auto* ids = vtkTypeInt64Array::SafeDownCast(out->GetPointData()->GetArray("VisibleTriangle"));
+  r.ids.assign(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfValues());
   return r;
 }
 
@@ -170,6 +175,8 @@ void CheckObject(const char* name, vtkAlgorithmOutput* mesh)
     }
     EXPECT_GT(changed, 0) << name;
     EXPECT_LE(changed, on.edgePixels) << name;
+    // The ids stay the centre sample's.
+    EXPECT_TRUE(on.ids == off.ids) << name << ", " << s << " x " << s;
   }
   std::cout << std::endl;
   // 16 samples: a coverage step is 1/16 of the contrast (up to ~230 levels here).
