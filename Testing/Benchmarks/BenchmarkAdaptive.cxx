@@ -47,6 +47,7 @@
 // --path-only prints the path table and stops. --quick (CI smoke): 2 places, tolerance 1 px
 // only, 2 frames. Speed is never asserted; a VTK error ends the program with status 1.
 #include "BenchmarkScene.h"
+#include "BenchmarkTable.h"
 #include "FramePipeline.h" // Clock, Ms, Median, CameraFrame, CsvField
 
 #include "EdgeBend.h"
@@ -432,21 +433,6 @@ struct Row
   Accuracy accuracy;
 };
 
-std::string Number(double v, const char* format)
-{
-  if (std::isinf(v))
-  {
-    return v > 0 ? "inf" : "-inf";
-  }
-  if (std::isnan(v))
-  {
-    return "nan";
-  }
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), format, v);
-  return buffer;
-}
-
 const char* const kColumns[] = { "object", "configuration", "placement", "angle_deg", "distance_m",
   "scale_max_px_per_mm", "scale_min_px_per_mm", "input_triangles", "triangles", "split_triangles",
   "rasterised_triangles", "projection_ms", "frame_ms", "max_bend_px", "iou", "mean_boundary_px",
@@ -465,27 +451,12 @@ std::vector<std::string> Fields(const Row& r)
 
 void WriteCsv(const std::string& file, const std::vector<Row>& rows)
 {
-  std::ofstream out(file);
-  for (std::size_t k = 0; k < std::size(kColumns); ++k)
-  {
-    out << (k ? "," : "") << kColumns[k];
-  }
-  out << "\n";
+  std::vector<std::vector<std::string>> table;
   for (const Row& r : rows)
   {
-    const std::vector<std::string> fields = Fields(r);
-    for (std::size_t k = 0; k < fields.size(); ++k)
-    {
-      out << (k ? "," : "") << CsvField(fields[k]);
-    }
-    out << "\n";
+    table.push_back(Fields(r));
   }
-  out.close();
-  if (!out)
-  {
-    throw std::runtime_error("cannot write " + file);
-  }
-  std::printf("wrote %s\n", file.c_str());
+  WriteCsvTable(file, std::vector<std::string>(std::begin(kColumns), std::end(kColumns)), table);
 }
 
 struct Config

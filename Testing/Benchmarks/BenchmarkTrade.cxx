@@ -24,6 +24,7 @@
 // covers pixel centres). --quick (CI smoke) runs one remesh target, 2 frames and fewer
 // variants. Speed is never asserted; a failing stage ends the program with status 1.
 #include "BenchmarkScene.h"
+#include "BenchmarkTable.h"
 #include "FramePipeline.h"
 
 #include "ImageMetrics.h"
@@ -276,21 +277,6 @@ struct Row
                   ///< 3 adaptive tessellation, 4 anti-aliasing rows (8x8 reference); -1 none
 };
 
-std::string Number(double v, const char* format)
-{
-  if (std::isinf(v))
-  {
-    return v > 0 ? "inf" : "-inf";
-  }
-  if (std::isnan(v))
-  {
-    return "nan";
-  }
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), format, v);
-  return buffer;
-}
-
 std::vector<std::string> Fields(const Row& r)
 {
   const Accuracy& a = r.accuracy;
@@ -320,27 +306,12 @@ void PrintRow(const Row& r)
 
 void WriteCsv(const std::string& file, const std::vector<Row>& rows)
 {
-  std::ofstream out(file);
-  for (std::size_t k = 0; k < std::size(kColumns); ++k)
-  {
-    out << (k ? "," : "") << kColumns[k];
-  }
-  out << "\n";
+  std::vector<std::vector<std::string>> table;
   for (const Row& r : rows)
   {
-    const std::vector<std::string> fields = Fields(r);
-    for (std::size_t k = 0; k < fields.size(); ++k)
-    {
-      out << (k ? "," : "") << CsvField(fields[k]);
-    }
-    out << "\n";
+    table.push_back(Fields(r));
   }
-  out.close();
-  if (!out)
-  {
-    throw std::runtime_error("cannot write " + file);
-  }
-  std::printf("wrote %s\n", file.c_str());
+  WriteCsvTable(file, std::vector<std::string>(std::begin(kColumns), std::end(kColumns)), table);
 }
 
 // Two panels, fps on x: the mean boundary error (left) and 1 - SSIM (right), one point series
