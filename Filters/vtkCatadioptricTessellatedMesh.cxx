@@ -71,33 +71,17 @@ EdgeKey Key(vtkPoints* points, vtkIdType a, vtkIdType b, bool& forward)
   forward = pa < pb;
   return forward ? EdgeKey(pa, pb) : EdgeKey(pb, pa);
 }
-} // namespace
 
-vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
-  const catar::Projector& projector, const catar::TessellationOptions& options,
-  const unsigned char* status, const double* pixels, const double* mirrorPoints,
-  catar::Tessellation& added, vtkPolyData* output)
+// The triangles to split this frame, in cell order: a quick pass on the corners' statuses and
+// edge lengths (seen at the corners, no bend tolerance, no long edge: kept), then each
+// candidate's fate.
+std::vector<vtkIdType> ChooseTriangles(vtkPolyData* input, const catar::Projector& projector,
+  const catar::TessellationOptions& options, const unsigned char* status, const double* pixels,
+  const double* mirrorPoints)
 {
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType nPolys = polys->GetNumberOfCells();
-  if (nPolys == 0 || !(options.boundaryTolerance > 0.0 || options.bendTolerance > 0.0))
-  {
-    return 0;
-  }
   vtkPoints* points = input->GetPoints();
-  const vtkIdType nPoints = input->GetNumberOfPoints();
-  // With neither tolerance only triangles with an unseen corner can need it: none when every
-  // point is seen, found without a pass over the cells. (With a boundary tolerance, a triangle
-  // seen at its corners may still have a hidden middle: the pass looks at those with long edges.)
-  if (!(options.bendTolerance > 0.0) && !(options.boundaryTolerance > 0.0) &&
-    std::all_of(status, status + nPoints, [](unsigned char s) {
-      return catar::HasProjection(static_cast<catar::ProjectionStatus>(s));
-    }))
-  {
-    return 0;
-  }
-  // Which triangles to split: a quick pass on the corners' statuses (all seen, no bend
-  // tolerance: kept), then each candidate's fate.
   std::vector<unsigned char> split(static_cast<std::size_t>(nPolys), 0);
   const double check2 = options.interiorCheck * options.interiorCheck;
   const bool measureAll = options.bendTolerance > 0.0;
@@ -160,12 +144,22 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
       chosen.push_back(c);
     }
   }
-  if (chosen.empty())
-  {
-    return 0;
-  }
-  // The pieces, a tessellation per chosen triangle (in parallel), then numbered in order; at most
-  // kMaxPieces in all (a tiny tolerance stops there rather than exhausting memory).
+  return chosen;
+}
+
+// The pieces of the chosen triangles (and of the neighbours that must split a shared edge too,
+// added to `chosen`), in cell order.
+std::vector<catar::Tessellation> TessellateAlike(vtkPolyData* input,
+  const catar::Projector& projector, const catar::TessellationOptions& options,
+  const unsigned char* status, const double* pixels, const double* mirrorPoints,
+  std::vector<vtkIdType>& chosen)
+{
+  vtkCellArray* polys = input->GetPolys();
+  const vtkIdType nPolys = polys->GetNumberOfCells();
+  vtkPoints* points = input->GetPoints();
+  const vtkIdType nPoints = input->GetNumberOfPoints();
+  // A tessellation per chosen triangle (in parallel); at most kMaxPieces in all (a tiny tolerance
+  // stops there rather than exhausting memory).
   catar::TessellationOptions bounded = options;
   bounded.maxPiecesPerTriangle = static_cast<int>(std::max<std::size_t>(4,
     std::min<std::size_t>(
@@ -313,6 +307,18 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
     chosen.swap(sortedCells);
     pieces.swap(sortedPieces);
   }
+  return pieces;
+}
+
+// The refined mesh: the input's points then the new ones (point data interpolated), the
+// polygons with each chosen triangle's pieces in its place (its cell data copied).
+void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
+  std::vector<catar::Tessellation>& pieces, catar::Tessellation& added, vtkPolyData* output)
+{
+  vtkCellArray* polys = input->GetPolys();
+  const vtkIdType nPolys = polys->GetNumberOfCells();
+  vtkPoints* points = input->GetPoints();
+  const vtkIdType nPoints = input->GetNumberOfPoints();
   added.points.clear();
   added.triangles.clear();
   std::vector<std::vector<catar::TessellatedTriangle>> byCell(chosen.size());
@@ -415,5 +421,39 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   output->GetPointData()->ShallowCopy(outPD);
   output->GetCellData()->ShallowCopy(outCD);
   output->GetFieldData()->ShallowCopy(input->GetFieldData());
+}
+} // namespace
+
+vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
+  const catar::Projector& projector, const catar::TessellationOptions& options,
+  const unsigned char* status, const double* pixels, const double* mirrorPoints,
+  catar::Tessellation& added, vtkPolyData* output)
+{
+  vtkCellArray* polys = input->GetPolys();
+  const vtkIdType nPolys = polys->GetNumberOfCells();
+  if (nPolys == 0 || !(options.boundaryTolerance > 0.0 || options.bendTolerance > 0.0))
+  {
+    return 0;
+  }
+  const vtkIdType nPoints = input->GetNumberOfPoints();
+  // With neither tolerance only triangles with an unseen corner can need it: none when every
+  // point is seen, found without a pass over the cells. (With a boundary tolerance, a triangle
+  // seen at its corners may still have a hidden middle: the pass looks at those with long edges.)
+  if (!(options.bendTolerance > 0.0) && !(options.boundaryTolerance > 0.0) &&
+    std::all_of(status, status + nPoints, [](unsigned char s) {
+      return catar::HasProjection(static_cast<catar::ProjectionStatus>(s));
+    }))
+  {
+    return 0;
+  }
+  std::vector<vtkIdType> chosen =
+    ChooseTriangles(input, projector, options, status, pixels, mirrorPoints);
+  if (chosen.empty())
+  {
+    return 0;
+  }
+  std::vector<catar::Tessellation> pieces =
+    TessellateAlike(input, projector, options, status, pixels, mirrorPoints, chosen);
+  Assemble(input, chosen, pieces, added, output);
   return static_cast<vtkIdType>(chosen.size());
 }
