@@ -17,6 +17,9 @@ print('imported', car.__file__)
 assert car.__file__.startswith('$prefix'), car.__file__
 "
 "$prefix/bin/catadioptric-render" --help > /dev/null
+# The licence and citation file.
+test -f "$prefix/share/doc/CatadioptricAR/LICENSE"
+test -f "$prefix/share/doc/CatadioptricAR/CITATION.cff"
 plugin=$(find "$prefix" -name CatadioptricAR.so | head -n 1)
 test -n "$plugin"
 if [[ -n "$pvpython" ]]; then
