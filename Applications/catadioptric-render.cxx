@@ -2,7 +2,9 @@
 // numbered PNGs or a video, and prints the time of each stage.
 //
 //   catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--markers BOARD] [--repeat N]
-//                       [--target-area A | --pixel-tolerance P] [--print-demo-scene]
+//                       [--adaptive P] [--antialias] [--antialias-samples S]
+//                       [--target-area A | --pixel-tolerance P] [--print-demo-scene] [--version]
+// (--help lists them; CLI11 parses them: --option value or --option=value.)
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricParallel.h"
@@ -11,6 +13,7 @@
 #include "vtkNew.h"
 #include "vtkSMPTools.h"
 
+#include "CommandLine.h"
 #include "VideoIO.h"
 
 #include <algorithm>
@@ -25,36 +28,7 @@
 
 namespace
 {
-void Usage(FILE* out)
-{
-  std::fprintf(out,
-    "usage: catadioptric-render [SCENE] [-o OUT] [--frames A:B] [--fps F] [--markers BOARD]\n"
-    "                           [--adaptive P] [--antialias [S]]\n"
-    "                           [--repeat N] [--target-area A | --pixel-tolerance P]\n"
-    "                           [--print-demo-scene]\n"
-    "\n"
-    "Renders SCENE (YAML or JSON, see README \"Scene files\") to OUT (default\n"
-    "catadioptric-render.png) and prints the time of each stage. Without SCENE it renders the\n"
-    "built-in demo scene.\n"
-    "\n"
-    "Sequences (a scene with a trajectory, a video background, keyframes or 'sequence'): OUT as\n"
-    "a pattern (out/frame_%%05d.png) writes every frame as a numbered image, OUT ending in .mp4\n"
-    "or .avi writes a video; OUT a plain image name writes the first frame of the range.\n"
-    "--frames A:B renders frames A to B-1 (0-based; A: and :B leave an end open), --fps F sets\n"
-    "the video's frame rate (default: the sequence's). A progress line on standard error and a\n"
-    "per-stage summary follow. --markers BOARD estimates each frame's camera pose from the\n"
-    "board's markers seen in the background (a video or image background; README \"Markers\").\n"
-    "--adaptive P splits, every frame, the triangles whose edges bend more than P pixels\n"
-    "(README \"Edges\"; overrides the scene's 'edges'). --antialias [S] redraws the edge\n"
-    "pixels from S x S samples each (S = 2, 3 or 4, default 4; README \"Rasterisation\";\n"
-    "overrides the scene's 'antialias'; --antialias 1 turns it off).\n"
-    "\n"
-    "--repeat N renders the frame N times and reports the per-frame stages of the last one.\n"
-    "--target-area A remeshes every object to triangles of about A square metres;\n"
-    "--pixel-tolerance P remeshes every object so that no visible edge bends more than P pixels\n"
-    "in the image (both override the scene's 'remesh' settings). --print-demo-scene writes the\n"
-    "demo scene's YAML to standard output.\n");
-}
+const char* const kProgram = "catadioptric-render";
 
 using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b)
@@ -202,119 +176,85 @@ int main(int argc, char* argv[])
   double targetArea = 0.0;
   double pixelTolerance = 0.0;
   long long first = 0, end = -1; // --frames (end -1: the sequence's last)
+  std::string frameRange;
   double fps = 0.0;
   std::string markers;
   double adaptive = 0.0;
-  int antialias = 0;
-  for (int i = 1; i < argc; ++i)
+  int antialiasSamples = 0;
+  bool antialias = false, printDemo = false;
+
+  CLI::App app("Renders SCENE (YAML or JSON, README \"Scene files\") to OUT and prints the time "
+               "of each stage. Without SCENE it renders the built-in demo scene.",
+    kProgram);
+  app.footer(
+    "Sequences (a scene with a trajectory, a video background, keyframes or 'sequence'): OUT as "
+    "a pattern (out/frame_%05d.png) writes every frame as a numbered image, OUT ending in .mp4 "
+    "or .avi writes a video; OUT a plain image name writes the first frame of the range. A "
+    "progress line on standard error and a per-stage summary follow.\n\nExit status: 0 "
+    "success, 1 the scene or an output failed, 2 usage error.");
+  app.add_option("SCENE", scene, "scene file (YAML or JSON); without it, the built-in demo");
+  app.add_option("-o,--output", outName,
+    "image (.png), numbered images (a %05d pattern) or video (.mp4, .avi); default "
+    "catadioptric-render.png");
+  app
+    .add_option("--frames", frameRange,
+      "frames A to B-1 of a sequence (0-based; A: and :B leave an end open; A alone: that frame)")
+    ->type_name("A:B");
+  app.add_option("--fps", fps, "the video's frame rate (default: the sequence's)")
+    ->check(CLI::Range(1e-6, 1000.0));
+  app.add_option("--markers", markers,
+    "estimate each frame's camera pose from this board's markers seen in the background "
+    "(README \"Markers\")");
+  app
+    .add_option("--adaptive", adaptive,
+      "split, every frame, the triangles whose edges bend more than P pixels (README \"Edges\"; "
+      "overrides the scene's)")
+    ->type_name("P")
+    ->check(CLI::Range(1e-9, 1e6));
+  app.add_flag("--antialias", antialias,
+    "redraw the edge pixels from 4 x 4 samples each (README \"Rasterisation\"; overrides the "
+    "scene's)");
+  app
+    .add_option("--antialias-samples", antialiasSamples,
+      "anti-aliasing with S x S samples per edge pixel (2, 3 or 4)")
+    ->type_name("S")
+    ->check(CLI::Range(2, 4));
+  app
+    .add_option("--repeat", repeat,
+      "render the frame N times and report the per-frame stages of the last one")
+    ->type_name("N")
+    ->check(CLI::PositiveNumber);
+  auto* area = app
+                 .add_option("--target-area", targetArea,
+                   "remesh every object to triangles of about A square metres")
+                 ->type_name("A")
+                 ->check(CLI::PositiveNumber);
+  app
+    .add_option("--pixel-tolerance", pixelTolerance,
+      "remesh every object so that no visible edge bends more than P pixels")
+    ->type_name("P")
+    ->check(CLI::PositiveNumber)
+    ->excludes(area);
+  app.add_flag("--print-demo-scene", printDemo, "write the demo scene's YAML to standard output");
+  const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
+  if (parsed >= 0)
   {
-    const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help")
-    {
-      Usage(stdout);
-      return 0;
-    }
-    if (arg == "--print-demo-scene")
-    {
-      std::fputs(vtkCatadioptricSceneRenderer::GetDemoSceneText(), stdout);
-      return 0;
-    }
-    if (arg == "-o" && i + 1 < argc)
-    {
-      outName = argv[++i];
-    }
-    else if (arg == "--repeat" && i + 1 < argc)
-    {
-      repeat = std::atoi(argv[++i]);
-      if (repeat < 1)
-      {
-        std::fprintf(stderr, "catadioptric-render: --repeat needs a positive number\n");
-        return 2;
-      }
-    }
-    else if (arg == "--frames" && i + 1 < argc)
-    {
-      if (!ParseRange(argv[++i], first, end) || (end >= 0 && end <= first))
-      {
-        std::fprintf(stderr,
-          "catadioptric-render: --frames needs A:B with 0 <= A < B (frames A to B-1), A:, :B "
-          "or A\n");
-        return 2;
-      }
-    }
-    else if (arg == "--adaptive" && i + 1 < argc)
-    {
-      char* e = nullptr;
-      adaptive = std::strtod(argv[++i], &e);
-      if (!e || *e != '\0' || !(adaptive > 0.0 && adaptive <= 1e6))
-      {
-        std::fprintf(stderr, "catadioptric-render: --adaptive needs a positive number (pixels)\n");
-        return 2;
-      }
-    }
-    else if (arg == "--antialias")
-    {
-      antialias = 4;
-      const std::string next = i + 1 < argc ? argv[i + 1] : "";
-      if (next.size() == 1 && next[0] >= '0' && next[0] <= '9')
-      {
-        antialias = next[0] - '0';
-        ++i;
-        if (antialias < 1 || antialias > 4)
-        {
-          std::fprintf(stderr,
-            "catadioptric-render: --antialias takes 2, 3 or 4 samples per pixel side (1: off)\n");
-          return 2;
-        }
-      }
-    }
-    else if (arg == "--markers" && i + 1 < argc)
-    {
-      markers = argv[++i];
-    }
-    else if (arg == "--fps" && i + 1 < argc)
-    {
-      char* e = nullptr;
-      fps = std::strtod(argv[++i], &e);
-      if (!e || *e != '\0' || !(fps > 0.0 && fps <= 1000.0))
-      {
-        std::fprintf(stderr, "catadioptric-render: --fps needs a number in (0, 1000]\n");
-        return 2;
-      }
-    }
-    else if ((arg == "--target-area" || arg == "--pixel-tolerance") && i + 1 < argc)
-    {
-      char* end = nullptr;
-      const double value = std::strtod(argv[++i], &end);
-      if (!end || *end != '\0' || !(value > 0.0) || !std::isfinite(value))
-      {
-        std::fprintf(stderr, "catadioptric-render: %s needs a positive number\n", arg.c_str());
-        return 2;
-      }
-      (arg == "--target-area" ? targetArea : pixelTolerance) = value;
-      if (targetArea > 0.0 && pixelTolerance > 0.0)
-      {
-        std::fprintf(
-          stderr, "catadioptric-render: give --target-area or --pixel-tolerance, not both\n");
-        return 2;
-      }
-    }
-    else if (!arg.empty() && arg[0] == '-')
-    {
-      std::fprintf(stderr, "catadioptric-render: unknown option %s\n", arg.c_str());
-      Usage(stderr);
-      return 2;
-    }
-    else if (scene.empty())
-    {
-      scene = arg;
-    }
-    else
-    {
-      std::fprintf(stderr, "catadioptric-render: more than one scene given\n");
-      return 2;
-    }
+    return parsed;
   }
+  if (printDemo)
+  {
+    std::fputs(vtkCatadioptricSceneRenderer::GetDemoSceneText(), stdout);
+    return 0;
+  }
+  if (!frameRange.empty() && (!ParseRange(frameRange, first, end) || (end >= 0 && end <= first)))
+  {
+    std::fprintf(stderr,
+      "%s: --frames needs A:B with 0 <= A < B (frames A to B-1), A:, :B or A (run with --help "
+      "for usage)\n",
+      kProgram);
+    return 2;
+  }
+  const int antialiasing = antialiasSamples > 0 ? antialiasSamples : antialias ? 4 : 0;
   // Parallel loops: STDThread unless the environment chose a backend.
   if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
   {
@@ -327,7 +267,7 @@ int main(int argc, char* argv[])
   renderer->SetRemeshPixelTolerance(pixelTolerance);
   renderer->SetMarkerBoardFileName(markers.empty() ? nullptr : markers.c_str());
   renderer->SetAdaptiveTolerance(adaptive);
-  renderer->SetAntialias(antialias);
+  renderer->SetAntialias(antialiasing);
   if (!renderer->LoadScene())
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());

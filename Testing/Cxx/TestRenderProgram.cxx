@@ -1,0 +1,66 @@
+// catadioptric-render's command line (CLI11): --version, --option=value as well as --option
+// value, -h, usage errors printed once with exit status 2, no colour codes.
+#include "TestPrograms.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+namespace
+{
+catar_test::ProgramRun Render(const std::string& arguments)
+{
+  return catar_test::RunProgram(CATAR_RENDER_PROGRAM, arguments);
+}
+
+int Lines(const std::string& text)
+{
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+} // namespace
+
+TEST(RenderProgram, VersionAndHelp)
+{
+  const auto version = Render("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.output, std::string("catadioptric-render ") + CATAR_VERSION + "\n");
+  const auto help = Render("-h");
+  EXPECT_EQ(help.status, 0);
+  for (const char* option : { "--output", "--frames", "--fps", "--adaptive", "--antialias",
+         "--antialias-samples", "--repeat", "--target-area", "--pixel-tolerance", "--version" })
+  {
+    EXPECT_NE(help.output.find(option), std::string::npos) << option;
+  }
+  EXPECT_EQ(help.output.find('\x1b'), std::string::npos) << "colour codes in the help";
+}
+
+TEST(RenderProgram, OptionsTakeTheirValueEitherWay)
+{
+  const std::string dir = ::testing::TempDir();
+  for (const std::string form : { "--output=", "--output " })
+  {
+    const std::string out = dir + "/catar_cli_" + (form.back() == '=' ? "eq" : "sp") + ".png";
+    std::remove(out.c_str());
+    const auto run =
+      Render(form + "'" + out + "' --repeat=1 --antialias --antialias-samples 2 --adaptive=4");
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_TRUE(std::ifstream(out).good()) << form;
+    EXPECT_NE(run.output.find("wrote " + out), std::string::npos) << run.output;
+  }
+}
+
+TEST(RenderProgram, UsageErrorsOnceWithStatusTwo)
+{
+  for (const char* bad : { "--bogus", "--antialias-samples 5", "--repeat 0", "--fps=-1",
+         "--target-area 1e-4 --pixel-tolerance 1", "--frames 3:1", "--adaptive", "a.yaml b.yaml" })
+  {
+    const auto run = Render(bad);
+    EXPECT_EQ(run.status, 2) << bad << ": " << run.output;
+    EXPECT_EQ(Lines(run.output), 1) << bad << ": " << run.output;
+    EXPECT_EQ(run.output.rfind("catadioptric-render: ", 0), 0u) << run.output;
+    EXPECT_NE(run.output.find("--help"), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find('\x1b'), std::string::npos) << run.output;
+  }
+}
