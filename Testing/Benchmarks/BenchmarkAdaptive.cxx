@@ -46,6 +46,7 @@
 //
 // --path-only prints the path table and stops. --quick (CI smoke): 2 places, tolerance 1 px
 // only, 2 frames. Speed is never asserted; a VTK error ends the program with status 1.
+#include "BenchmarkErrors.h"
 #include "BenchmarkScene.h"
 #include "BenchmarkTable.h"
 #include "FramePipeline.h" // Clock, Ms, Median, CameraFrame, CsvField
@@ -84,41 +85,6 @@ namespace
 using namespace catar_benchmark;
 
 constexpr double kPi = 3.14159265358979323846;
-
-// VTK errors are counted (a failing stage ends the run); warnings (the bunny's repairs, repeated
-// for every remesh) are dropped.
-class ErrorCountingWindow : public vtkOutputWindow
-{
-public:
-  static ErrorCountingWindow* New();
-  vtkTypeMacro(ErrorCountingWindow, vtkOutputWindow);
-  void DisplayErrorText(const char* text) override
-  {
-    ++this->Errors;
-    this->Last = text ? text : "";
-    std::fprintf(stderr, "%s", this->Last.c_str());
-  }
-  void DisplayWarningText(const char*) override {}
-  void DisplayGenericWarningText(const char*) override {}
-  void DisplayDebugText(const char*) override {}
-  int Errors = 0;
-  std::string Last;
-};
-vtkStandardNewMacro(ErrorCountingWindow);
-
-ErrorCountingWindow* Output = nullptr;
-
-void Check(const std::string& stage, int errorsBefore, bool ok = true)
-{
-  if (Output->Errors != errorsBefore)
-  {
-    throw std::runtime_error(stage + " failed: " + Output->Last);
-  }
-  if (!ok)
-  {
-    throw std::runtime_error(stage + " failed");
-  }
-}
 
 vtkSmartPointer<vtkPolyData> Translated(vtkPolyData* mesh, const double d[3])
 {
@@ -661,7 +627,8 @@ int main(int argc, char* argv[])
     frames = 2;
   }
   vtkCatadioptricParallel::EnableThreads();
-  vtkNew<ErrorCountingWindow> output;
+  vtkNew<CountingOutputWindow> output;
+  output->PrintWarnings = false; // the bunny's repairs, repeated for every remesh
   Output = output;
   vtkOutputWindow::SetInstance(output);
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // the window above prints errors

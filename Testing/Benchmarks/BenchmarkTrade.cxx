@@ -23,6 +23,7 @@
 // reference's supersampling (default 1: one ray through each pixel centre, as the rasteriser
 // covers pixel centres). --quick (CI smoke) runs one remesh target, 2 frames and fewer
 // variants. Speed is never asserted; a failing stage ends the program with status 1.
+#include "BenchmarkErrors.h"
 #include "BenchmarkScene.h"
 #include "BenchmarkTable.h"
 #include "FramePipeline.h"
@@ -71,58 +72,6 @@ using namespace catar_benchmark;
 
 /// The frame whose image is compared with the reference (lights a sixth of a turn on).
 constexpr int kAccuracyFrame = 20;
-
-// VTK errors are counted so that a failing stage ends the run with a message; warnings (the
-// bunny's repairs, repeated for every remesh) are printed once each.
-class CountingOutputWindow : public vtkOutputWindow
-{
-public:
-  static CountingOutputWindow* New();
-  vtkTypeMacro(CountingOutputWindow, vtkOutputWindow);
-  void DisplayErrorText(const char* text) override
-  {
-    ++this->Errors;
-    this->ErrorTexts.emplace_back(text ? text : "");
-    std::fprintf(stderr, "%s", this->ErrorTexts.back().c_str());
-  }
-  void DisplayWarningText(const char* text) override { this->Warn(text); }
-  void DisplayGenericWarningText(const char* text) override { this->Warn(text); }
-  void DisplayDebugText(const char*) override {}
-  int Errors = 0;
-  std::vector<std::string> ErrorTexts;
-
-private:
-  void Warn(const char* text)
-  {
-    std::string t = text ? text : "";
-    const std::size_t message = t.find("): "); // after "vtkClass (0x...)"
-    if (message != std::string::npos)
-    {
-      t = t.substr(message + 3);
-    }
-    if (this->Seen.insert(t).second)
-    {
-      std::fprintf(stderr, "warning: %s", t.c_str());
-    }
-  }
-  std::set<std::string> Seen;
-};
-vtkStandardNewMacro(CountingOutputWindow);
-
-CountingOutputWindow* Output = nullptr;
-
-// Throws when a VTK error was reported since `errorsBefore`, or when `ok` is false.
-void Check(const std::string& stage, int errorsBefore, bool ok = true)
-{
-  if (Output->Errors != errorsBefore)
-  {
-    throw std::runtime_error(stage + " failed: " + Output->ErrorTexts[errorsBefore]);
-  }
-  if (!ok)
-  {
-    throw std::runtime_error(stage + " failed");
-  }
-}
 
 /// One rendering kept for comparison: RGBA colours and visible-triangle ids, VTK row order.
 struct Rendering
