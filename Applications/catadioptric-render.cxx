@@ -194,8 +194,8 @@ int main(int argc, char* argv[])
     "success, 1 the scene or an output failed, 2 usage error.");
   app.add_option("SCENE", scene, "scene file (YAML or JSON); without it, the built-in demo");
   app.add_option("-o,--output", outName,
-    "image (.png), numbered images (a %05d pattern) or video (.mp4, .avi); default "
-    "catadioptric-render.png");
+    "image (.png, .jpg, .tif, .bmp, .webp; the format by the extension), numbered images (a "
+    "%05d pattern) or video (.mp4, .avi); default catadioptric-render.png");
   app
     .add_option("--frames", frameRange,
       "frames A to B-1 of a sequence (0-based; A: and :B leave an end open; A alone: that frame)")
@@ -255,6 +255,14 @@ int main(int argc, char* argv[])
     return 2;
   }
   const int antialiasing = antialiasSamples > 0 ? antialiasSamples : antialias ? 4 : 0;
+  // One image: its format by the extension, checked before any work.
+  std::string formatError;
+  if (!catar::IsFramePattern(outName) && !catar::FrameWriter::IsVideo(outName) &&
+    !catar::IsImageFileName(outName, &formatError))
+  {
+    std::fprintf(stderr, "%s: -o %s (run with --help for usage)\n", kProgram, formatError.c_str());
+    return 2;
+  }
   // Parallel loops: STDThread unless the environment chose a backend.
   if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
   {
@@ -325,7 +333,7 @@ int main(int argc, char* argv[])
       "catadioptric-render: warning: nothing to draw: the scene has no objects with triangles "
       "(is 'objects' spelt right?); the image is the background alone\n");
   }
-  if (!renderer->WritePNG(outName.c_str()))
+  if (!renderer->WriteImage(outName.c_str()))
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
     return 1;

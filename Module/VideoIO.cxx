@@ -1,6 +1,7 @@
 #include "VideoIO.h"
 
 #include "CameraModel.h" // kMaxImagePixels
+#include "FileOutput.h"  // WriteWholeFile
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -442,17 +443,7 @@ bool FrameWriter::Write(long long index, const Frame& frame, std::string& error)
       in.writer.write(bgr);
       return true;
     }
-    // Alpha where the format keeps it (PNG, TIFF, WebP); JPEG and the others get BGR.
-    const std::string ext = Extension(in.name);
-    const bool alpha = ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".webp";
-    cv::Mat out;
-    cv::cvtColor(rgba, out, alpha ? cv::COLOR_RGBA2BGRA : cv::COLOR_RGBA2BGR);
-    const std::string file = FrameFileName(in.name, index);
-    if (!cv::imwrite(file, out))
-    {
-      error = "cannot write '" + file + "'";
-      return false;
-    }
+    return WriteImageFile(FrameFileName(in.name, index), frame, error);
   }
   catch (const cv::Exception& e)
   {
@@ -460,6 +451,90 @@ bool FrameWriter::Write(long long index, const Frame& frame, std::string& error)
     return false;
   }
   return true;
+}
+
+namespace
+{
+const char* const kImageExtensions[] = { ".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".webp",
+  ".exr" };
+}
+
+bool IsImageFileName(const std::string& name, std::string* error)
+{
+  const std::string ext = Extension(name);
+  if (ext.empty())
+  {
+    return true; // written as PNG (a device such as /dev/stdout)
+  }
+  std::string known;
+  for (const char* e : kImageExtensions)
+  {
+    bool writes = false;
+    try
+    {
+      writes = cv::haveImageWriter(std::string("x") + e);
+    }
+    catch (const cv::Exception&)
+    {
+    }
+    if (!writes)
+    {
+      continue;
+    }
+    if (ext == e)
+    {
+      return true;
+    }
+    known += std::string(known.empty() ? "" : ", ") + e;
+  }
+  if (error)
+  {
+    *error = "'" + name +
+      "': " + (ext.empty() ? std::string("no extension") : "unknown image format '" + ext + "'") +
+      " (this build writes " + known + ")";
+  }
+  return false;
+}
+
+bool WriteImageFile(const std::string& file, const Frame& frame, std::string& error)
+{
+  if (!IsImageFileName(file, &error))
+  {
+    return false;
+  }
+  if (frame.width <= 0 || frame.height <= 0 ||
+    frame.rgba.size() != 4 * static_cast<std::size_t>(frame.width) * frame.height)
+  {
+    error = "'" + file + "': no image to write";
+    return false;
+  }
+  std::vector<uchar> bytes;
+  try
+  {
+    // Alpha where the format keeps it (PNG, TIFF, WebP); JPEG and the others get BGR. No
+    // extension: PNG.
+    const std::string ext = Extension(file).empty() ? ".png" : Extension(file);
+    const bool alpha = ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".webp";
+    cv::Mat rgba(frame.height, frame.width, CV_8UC4, const_cast<std::uint8_t*>(frame.rgba.data()));
+    cv::Mat out;
+    cv::cvtColor(rgba, out, alpha ? cv::COLOR_RGBA2BGRA : cv::COLOR_RGBA2BGR);
+    if (ext == ".exr")
+    {
+      out.convertTo(out, CV_32F, 1.0 / 255.0);
+    }
+    if (!cv::imencode(ext, out, bytes) || bytes.empty())
+    {
+      error = "'" + file + "': the image could not be encoded";
+      return false;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "'" + file + "': " + e.msg;
+    return false;
+  }
+  return WriteWholeFile(
+    file, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()), error);
 }
 
 void FrameWriter::Close()

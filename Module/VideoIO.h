@@ -54,6 +54,15 @@ private:
 
 /// Frames written as numbered image files (a pattern; the format from the extension, as
 /// cv::imwrite) or a video (.mp4, .avi).
+/// Whether name ends in the extension of an image format this build writes (.png, .jpg, .jpeg,
+/// .tif, .tiff, .bmp, .webp; .exr where OpenCV's OpenEXR writer is enabled) or has none (PNG:
+/// a device such as /dev/stdout); false with a sentence in error naming them.
+bool IsImageFileName(const std::string& name, std::string* error = nullptr);
+/// Writes frame as an image, the format by the file's extension (IsImageFileName): PNG, TIFF and
+/// WebP keep alpha, the others get RGB. Encoded in memory, then written with every error checked
+/// (a full disk is reported). False with a sentence in error.
+bool WriteImageFile(const std::string& file, const Frame& frame, std::string& error);
+
 class FrameWriter
 {
 public:

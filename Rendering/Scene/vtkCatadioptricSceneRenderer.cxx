@@ -866,6 +866,27 @@ vtkImageData* vtkCatadioptricSceneRenderer::GetOutput()
   return this->Internal->Compositor->GetOutput();
 }
 
+bool vtkCatadioptricSceneRenderer::WriteImage(const char* fileName)
+{
+  vtkImageData* image = this->GetOutput();
+  if (!image || image->GetNumberOfPoints() == 0)
+  {
+    this->Internal->Error = "nothing rendered yet";
+    vtkErrorMacro(<< this->Internal->Error);
+    return false;
+  }
+  std::string error;
+  if (!catar::WriteImageFile(
+        fileName ? fileName : "", vtkCatadioptricImageSupport::ToFrame(image), error))
+  {
+    this->Internal->Error = error;
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  this->Internal->Error.clear();
+  return true;
+}
+
 bool vtkCatadioptricSceneRenderer::WritePNG(const char* fileName)
 {
   vtkImageData* image = this->GetOutput();

@@ -136,6 +136,9 @@ public:
 
   /// Writes the last frame as PNG. Returns false on failure.
   bool WritePNG(const char* fileName);
+  /// Writes the last frame in the format its extension names (.png, .jpg, .tif, .bmp, .webp,
+  /// .exr where available; catar::WriteImageFile). Returns false on failure (GetLastError()).
+  bool WriteImage(const char* fileName);
 
   /// The scene's camera; change its pose and call Render() again for a new frame.
   vtkCatadioptricCamera* GetCamera();

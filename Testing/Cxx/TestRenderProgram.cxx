@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <fstream>
 #include <string>
+#include <utility>
 
 namespace
 {
@@ -63,4 +64,28 @@ TEST(RenderProgram, UsageErrorsOnceWithStatusTwo)
     EXPECT_NE(run.output.find("--help"), std::string::npos) << run.output;
     EXPECT_EQ(run.output.find('\x1b'), std::string::npos) << run.output;
   }
+}
+
+// The image's format follows the extension; an unknown one is a usage error before any work.
+TEST(RenderProgram, ImageFormatByExtension)
+{
+  const std::string dir = ::testing::TempDir();
+  const std::pair<const char*, std::string> formats[] = { { "png", "\x89PNG" },
+    { "jpg", "\xFF\xD8\xFF" }, { "tif", "II*" }, { "bmp", "BM" } };
+  for (const auto& f : formats)
+  {
+    const std::string out = dir + "/catar_format." + f.first;
+    std::remove(out.c_str());
+    const auto run = Render("--antialias -o '" + out + "'");
+    EXPECT_EQ(run.status, 0) << f.first << ": " << run.output;
+    std::ifstream in(out, std::ios::binary);
+    std::string head(f.second.size(), '\0');
+    in.read(&head[0], static_cast<std::streamsize>(head.size()));
+    EXPECT_EQ(head, f.second) << f.first;
+  }
+  const auto bad = Render("-o '" + dir + "/catar_format.xyz'");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_EQ(Lines(bad.output), 1) << bad.output;
+  EXPECT_NE(bad.output.find("unknown image format '.xyz'"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find(".jpg"), std::string::npos) << bad.output;
 }
