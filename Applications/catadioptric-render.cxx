@@ -14,7 +14,10 @@
 #include "vtkSMPTools.h"
 
 #include "CommandLine.h"
+#include "FileOutput.h"
 #include "VideoIO.h"
+#include "vtkPointData.h"
+#include "vtkTypeInt64Array.h"
 
 #include <algorithm>
 #include <chrono>
@@ -29,6 +32,59 @@
 namespace
 {
 const char* const kProgram = "catadioptric-render";
+
+// --mask and --ids from the output's VisibleTriangle array (VTK row order: turned top first).
+bool WriteMaskAndIds(vtkImageData* image, const std::string& maskName, const std::string& idsName)
+{
+  if (maskName.empty() && idsName.empty())
+  {
+    return true;
+  }
+  auto* ids = vtkTypeInt64Array::SafeDownCast(image->GetPointData()->GetArray("VisibleTriangle"));
+  int dims[3];
+  image->GetDimensions(dims);
+  const long long w = dims[0], h = dims[1];
+  if (!ids || ids->GetNumberOfValues() != w * h)
+  {
+    std::fprintf(stderr, "%s: no visible-triangle ids in the output\n", kProgram);
+    return false;
+  }
+  std::vector<long long> top(static_cast<std::size_t>(w * h));
+  for (long long y = 0; y < h; ++y)
+  {
+    std::copy(
+      ids->GetPointer((h - 1 - y) * w), ids->GetPointer((h - 1 - y) * w) + w, top.begin() + y * w);
+  }
+  std::string error;
+  if (!maskName.empty())
+  {
+    catar::Frame mask;
+    mask.width = static_cast<int>(w);
+    mask.height = static_cast<int>(h);
+    mask.rgba.resize(static_cast<std::size_t>(4 * w * h), 255);
+    for (std::size_t i = 0; i < top.size(); ++i)
+    {
+      const std::uint8_t v = top[i] >= 0 ? 255 : 0;
+      std::fill(mask.rgba.begin() + 4 * i, mask.rgba.begin() + 4 * i + 3, v);
+    }
+    if (!catar::WriteImageFile(maskName, mask, error))
+    {
+      std::fprintf(stderr, "%s: --mask %s\n", kProgram, error.c_str());
+      return false;
+    }
+    std::printf("wrote %s\n", maskName.c_str());
+  }
+  if (!idsName.empty())
+  {
+    if (!catar::WriteNpyInt64(idsName, h, w, top.data(), error))
+    {
+      std::fprintf(stderr, "%s: --ids %s\n", kProgram, error.c_str());
+      return false;
+    }
+    std::printf("wrote %s\n", idsName.c_str());
+  }
+  return true;
+}
 
 using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b)
@@ -181,7 +237,8 @@ int main(int argc, char* argv[])
   std::string markers;
   double adaptive = 0.0;
   int antialiasSamples = 0;
-  bool antialias = false, printDemo = false;
+  bool antialias = false, printDemo = false, alpha = false;
+  std::string maskName, idsName;
 
   CLI::App app("Renders SCENE (YAML or JSON, README \"Scene files\") to OUT and prints the time "
                "of each stage. Without SCENE it renders the built-in demo scene.",
@@ -235,6 +292,13 @@ int main(int argc, char* argv[])
     ->type_name("P")
     ->check(CLI::PositiveNumber)
     ->excludes(area);
+  app.add_flag("--alpha", alpha,
+    "the objects alone over a transparent background (PNG, TIFF and WebP keep the alpha)");
+  app.add_option("--mask", maskName,
+    "also write the objects' mask: 255 where a triangle is seen, 0 elsewhere (an image)");
+  app.add_option("--ids", idsName,
+    "also write the visible triangle per pixel as a NumPy .npy array of int64, rows top first: "
+    "mesh * 2^32 + cell, -1 for none");
   app.add_flag("--print-demo-scene", printDemo, "write the demo scene's YAML to standard output");
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
@@ -255,12 +319,25 @@ int main(int argc, char* argv[])
     return 2;
   }
   const int antialiasing = antialiasSamples > 0 ? antialiasSamples : antialias ? 4 : 0;
-  // One image: its format by the extension, checked before any work.
+  // One image: its format by the extension, checked before any work (and the mask's, the ids').
   std::string formatError;
   if (!catar::IsFramePattern(outName) && !catar::FrameWriter::IsVideo(outName) &&
     !catar::IsImageFileName(outName, &formatError))
   {
     std::fprintf(stderr, "%s: -o %s (run with --help for usage)\n", kProgram, formatError.c_str());
+    return 2;
+  }
+  if (!maskName.empty() && !catar::IsImageFileName(maskName, &formatError))
+  {
+    std::fprintf(
+      stderr, "%s: --mask %s (run with --help for usage)\n", kProgram, formatError.c_str());
+    return 2;
+  }
+  if (!idsName.empty() &&
+    (idsName.size() < 4 || idsName.compare(idsName.size() - 4, 4, ".npy") != 0))
+  {
+    std::fprintf(
+      stderr, "%s: --ids writes a NumPy .npy file (run with --help for usage)\n", kProgram);
     return 2;
   }
   // Parallel loops: STDThread unless the environment chose a backend.
@@ -276,6 +353,8 @@ int main(int argc, char* argv[])
   renderer->SetMarkerBoardFileName(markers.empty() ? nullptr : markers.c_str());
   renderer->SetAdaptiveTolerance(adaptive);
   renderer->SetAntialias(antialiasing);
+  renderer->SetTransparentBackground(alpha);
+  renderer->SetOutputVisibleTriangle(!maskName.empty() || !idsName.empty());
   if (!renderer->LoadScene())
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
@@ -300,6 +379,13 @@ int main(int argc, char* argv[])
   if (!patternError.empty())
   {
     std::fprintf(stderr, "catadioptric-render: -o %s\n", patternError.c_str());
+    return 2;
+  }
+  if (sequence && (!maskName.empty() || !idsName.empty()))
+  {
+    std::fprintf(stderr,
+      "%s: --mask and --ids go with one image, not a sequence (run with --help for usage)\n",
+      kProgram);
     return 2;
   }
   if (sequence)
@@ -336,6 +422,10 @@ int main(int argc, char* argv[])
   if (!renderer->WriteImage(outName.c_str()))
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
+    return 1;
+  }
+  if (!WriteMaskAndIds(renderer->GetOutput(), maskName, idsName))
+  {
     return 1;
   }
   vtkCatadioptricCamera* cam = renderer->GetCamera();

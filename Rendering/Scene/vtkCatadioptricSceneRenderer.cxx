@@ -687,10 +687,18 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     in.Compositor->SetBackgroundColor(bg.color.x(), bg.color.y(), bg.color.z(), 1.0);
     in.Compositor->SetImageSize(model.intrinsics.width, model.intrinsics.height);
   }
-  if (in.Background)
+  if (in.Background && !this->TransparentBackground)
   {
     in.Compositor->SetFrameConnection(in.Background->GetOutputPort());
   }
+  if (this->TransparentBackground)
+  {
+    // The objects alone, over alpha 0 (a video or image background is still read: it sets the
+    // sequence and the poses from markers).
+    in.Compositor->SetBackgroundColor(0.0, 0.0, 0.0, 0.0);
+    in.Compositor->SetImageSize(model.intrinsics.width, model.intrinsics.height);
+  }
+  in.Compositor->SetOutputVisibleTriangle(this->OutputVisibleTriangle);
   if (!in.ApplyFrame(0))
   {
     vtkErrorMacro(<< in.Error);

@@ -65,6 +65,24 @@ public:
   ///@}
 
   ///@{
+  /// TransparentBackground (default off): the objects alone over a transparent background
+  /// (alpha 0), whatever the scene's background (a video or image background still sets the
+  /// sequence and the poses from markers). Applied at the next LoadScene().
+  vtkSetMacro(TransparentBackground, bool);
+  vtkGetMacro(TransparentBackground, bool);
+  vtkBooleanMacro(TransparentBackground, bool);
+  ///@}
+
+  ///@{
+  /// OutputVisibleTriangle (default off): the output gets the compositor's VisibleTriangle array
+  /// (per pixel, meshIndex * 2^32 + cell id of the triangle seen, -1 for none; see
+  /// vtkCatadioptricCompositor). Applied at the next LoadScene().
+  vtkSetMacro(OutputVisibleTriangle, bool);
+  vtkGetMacro(OutputVisibleTriangle, bool);
+  vtkBooleanMacro(OutputVisibleTriangle, bool);
+  ///@}
+
+  ///@{
   /// Anti-aliased edges (vtkCatadioptricCompositor's Antialias) with Antialias x Antialias
   /// samples per edge pixel (2 to 4), overriding the scene's `antialias`; 0 (default) keeps the
   /// scene's. Applied when the scene is next read.
@@ -176,6 +194,8 @@ protected:
   bool JoinObjects = true;
   double AdaptiveTolerance = 0.0;
   int Antialias = 0;
+  bool TransparentBackground = false;
+  bool OutputVisibleTriangle = false;
   char* MarkerBoardFileName = nullptr;
 
 private:

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iostream>
 #include <string>
 #include <utility>
 
@@ -88,4 +89,38 @@ TEST(RenderProgram, ImageFormatByExtension)
   EXPECT_EQ(Lines(bad.output), 1) << bad.output;
   EXPECT_NE(bad.output.find("unknown image format '.xyz'"), std::string::npos) << bad.output;
   EXPECT_NE(bad.output.find(".jpg"), std::string::npos) << bad.output;
+}
+
+// --alpha, --mask and --ids, read back by numpy: the alpha is 255 exactly where a triangle is
+// seen (opaque objects), the mask is the ids' silhouette.
+TEST(RenderProgram, AlphaMaskAndIds)
+{
+  const auto numpy = catar_test::RunProgram(CATAR_SYSTEM_PYTHON, "-c 'import numpy, PIL'");
+  if (numpy.status != 0)
+  {
+    GTEST_SKIP() << "no numpy and PIL in " << CATAR_SYSTEM_PYTHON;
+  }
+  const std::string dir = ::testing::TempDir();
+  const std::string image = dir + "/catar_alpha.png", mask = dir + "/catar_mask.png",
+                    ids = dir + "/catar_ids.npy";
+  const auto run = Render("--alpha -o '" + image + "' --mask '" + mask + "' --ids '" + ids + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string check = "-c 'import numpy, PIL.Image as I\n"
+                            "a = numpy.asarray(I.open(\"" +
+    image + "\"))\nm = numpy.asarray(I.open(\"" + mask + "\").convert(\"L\"))\nt = numpy.load(\"" +
+    ids +
+    "\")\n"
+    "assert t.dtype == numpy.int64 and t.shape == a.shape[:2] == m.shape, (t.shape, a.shape)\n"
+    "seen = t >= 0\n"
+    "assert 1000 < seen.sum() < seen.size // 2, seen.sum()\n"
+    "assert (t[~seen] == -1).all()\n"
+    "assert ((m == 255) == seen).all() and ((m == 0) == ~seen).all()\n"
+    "assert ((a[..., 3] == 255) == seen).all() and (a[..., 3][~seen] == 0).all()\n"
+    "print(\"seen\", seen.sum(), \"meshes\", sorted(set((t[seen] >> 32).tolist())))'";
+  const auto read = catar_test::RunProgram(CATAR_SYSTEM_PYTHON, check);
+  EXPECT_EQ(read.status, 0) << read.output;
+  std::cout << "[ cli      ] " << read.output;
+  // Sequences and the other extensions are refused.
+  EXPECT_EQ(Render("--ids '" + dir + "/x.txt'").status, 2);
+  EXPECT_EQ(Render("--mask '" + dir + "/x.xyz'").status, 2);
 }
