@@ -33,6 +33,47 @@ namespace
 {
 const char* const kProgram = "catadioptric-render";
 
+// --quiet: errors and warnings only; --json: the summary as one JSON object on standard output.
+bool Quiet = false;
+bool Json = false;
+
+// A JSON string.
+std::string Quoted(const std::string& text)
+{
+  std::string out = "\"";
+  for (const char c : text)
+  {
+    if (c == '"' || c == '\\')
+    {
+      out += '\\';
+      out += c;
+    }
+    else if (static_cast<unsigned char>(c) < 0x20)
+    {
+      char buffer[8];
+      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+      out += buffer;
+    }
+    else
+    {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// A JSON number (finite; else null).
+std::string JsonNumber(double v)
+{
+  if (!std::isfinite(v))
+  {
+    return "null";
+  }
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.6g", v);
+  return buffer;
+}
+
 // --mask and --ids from the output's VisibleTriangle array (VTK row order: turned top first).
 bool WriteMaskAndIds(vtkImageData* image, const std::string& maskName, const std::string& idsName)
 {
@@ -72,7 +113,10 @@ bool WriteMaskAndIds(vtkImageData* image, const std::string& maskName, const std
       std::fprintf(stderr, "%s: --mask %s\n", kProgram, error.c_str());
       return false;
     }
-    std::printf("wrote %s\n", maskName.c_str());
+    if (!Quiet && !Json)
+    {
+      std::printf("wrote %s\n", maskName.c_str());
+    }
   }
   if (!idsName.empty())
   {
@@ -81,7 +125,10 @@ bool WriteMaskAndIds(vtkImageData* image, const std::string& maskName, const std
       std::fprintf(stderr, "%s: --ids %s\n", kProgram, error.c_str());
       return false;
     }
-    std::printf("wrote %s\n", idsName.c_str());
+    if (!Quiet && !Json)
+    {
+      std::printf("wrote %s\n", idsName.c_str());
+    }
   }
   return true;
 }
@@ -136,6 +183,10 @@ std::string HoursMinutes(double seconds)
 // The progress line: a bar on a terminal (rewritten in place), a line every tenth otherwise.
 void Progress(long long done, long long total, double elapsed, bool terminal)
 {
+  if (Quiet)
+  {
+    return;
+  }
   const double rate = elapsed > 0.0 ? done / elapsed : 0.0;
   const double left = rate > 0.0 ? (total - done) / rate : 0.0;
   if (terminal)
@@ -204,6 +255,33 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
   writer.Close();
   const double total = Seconds(start, Clock::now());
   const long long n = end - first;
+  if (Json)
+  {
+    std::string stagesJson;
+    for (int s = perFrame - 1; s < stages; ++s)
+    {
+      stagesJson += std::string(stagesJson.empty() ? "" : ", ") +
+        Quoted(renderer->GetStageName(s)) + ": {\"mean\": " + JsonNumber(1e3 * sum[s] / n) +
+        ", \"max\": " + JsonNumber(1e3 * worst[s]) + "}";
+    }
+    stagesJson += ", \"encode\": {\"mean\": " + JsonNumber(1e3 * encode / n) +
+      ", \"max\": " + JsonNumber(1e3 * encodeWorst) + "}";
+    if (*renderer->GetPoseReport())
+    {
+      stagesJson += ", \"pose\": {\"mean\": " + JsonNumber(1e3 * pose / n) +
+        ", \"max\": " + JsonNumber(1e3 * poseWorst) + "}";
+    }
+    std::printf("{\"output\": %s, \"frames\": %lld, \"first\": %lld, \"last\": %lld, "
+                "\"seconds\": %s, \"frames_per_second\": %s, \"pose_failures\": %d, "
+                "\"stages_ms\": {%s}}\n",
+      Quoted(outName).c_str(), n, first, end - 1, JsonNumber(total).c_str(),
+      JsonNumber(n / total).c_str(), renderer->GetNumberOfPoseFailures(), stagesJson.c_str());
+    return 0;
+  }
+  if (Quiet)
+  {
+    return 0;
+  }
   std::printf("frames: %lld (%lld to %lld) in %.2f s: %.1f frames a second with decoding and "
               "encoding\n",
     n, first, end - 1, total, n / total);
@@ -299,6 +377,9 @@ int main(int argc, char* argv[])
   app.add_option("--ids", idsName,
     "also write the visible triangle per pixel as a NumPy .npy array of int64, rows top first: "
     "mesh * 2^32 + cell, -1 for none");
+  app.add_flag("--quiet", Quiet, "print errors and warnings only (no progress, no summary)");
+  app.add_flag(
+    "--json", Json, "print the summary (sizes, counts, the time of each stage) as one JSON object");
   app.add_flag("--print-demo-scene", printDemo, "write the demo scene's YAML to standard output");
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
@@ -361,7 +442,7 @@ int main(int argc, char* argv[])
     return 1;
   }
   const long long frames = renderer->GetNumberOfFrames();
-  if (*renderer->GetSequenceNote())
+  if (*renderer->GetSequenceNote() && !Quiet)
   {
     std::fprintf(stderr, "catadioptric-render: note: %s\n", renderer->GetSequenceNote());
   }
@@ -393,7 +474,7 @@ int main(int argc, char* argv[])
     return RenderSequence(
       renderer, outName, first, end, fps > 0.0 ? fps : renderer->GetFrameRate());
   }
-  if (frames > 1 && end - first > 1)
+  if (frames > 1 && end - first > 1 && !Quiet)
   {
     std::fprintf(stderr,
       "catadioptric-render: note: the scene has %lld frames; writing frame %lld (give -o "
@@ -429,25 +510,30 @@ int main(int argc, char* argv[])
     return 1;
   }
   vtkCatadioptricCamera* cam = renderer->GetCamera();
+  if (Json)
+  {
+    std::string stagesJson;
+    for (int s = 0; s < renderer->GetNumberOfStages(); ++s)
+    {
+      stagesJson += std::string(s ? ", " : "") + Quoted(renderer->GetStageName(s)) + ": " +
+        JsonNumber(1e3 * renderer->GetStageTime(s));
+    }
+    std::printf("{\"scene\": %s, \"output\": %s, \"mask\": %s, \"ids\": %s, \"width\": %d, "
+                "\"height\": %d, \"triangles\": %lld, \"backend\": %s, \"threads\": %d, "
+                "\"stages_ms\": {%s}, \"frame_ms\": %s}\n",
+      scene.empty() ? "null" : Quoted(scene).c_str(), Quoted(outName).c_str(),
+      maskName.empty() ? "null" : Quoted(maskName).c_str(),
+      idsName.empty() ? "null" : Quoted(idsName).c_str(), cam->GetImageWidth(),
+      cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
+      Quoted(vtkSMPTools::GetBackend()).c_str(), vtkSMPTools::GetEstimatedNumberOfThreads(),
+      stagesJson.c_str(), JsonNumber(1e3 * renderer->GetFrameTime()).c_str());
+    return 0;
+  }
+  if (Quiet)
+  {
+    return 0;
+  }
   std::printf("scene: %s\n", scene.empty() ? "(built-in demo)" : scene.c_str());
-  std::printf("image: %d x %d, %lld triangles, SMP backend %s (%d threads)\n", cam->GetImageWidth(),
-    cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
-    vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
-  if (*renderer->GetPoseReport())
-  {
-    std::printf("pose from markers: %s (%.2f ms)\n", renderer->GetPoseReport(),
-      1e3 * renderer->GetPoseTime());
-  }
-  if (*renderer->GetMeshReport())
-  {
-    std::printf("remeshed:\n%s", renderer->GetMeshReport());
-  }
-  for (int s = 0; s < renderer->GetNumberOfStages(); ++s)
-  {
-    std::printf("  %-11s %9.2f ms\n", renderer->GetStageName(s), 1e3 * renderer->GetStageTime(s));
-  }
-  std::printf("  per frame   %9.2f ms (projection + lighting + sort + composite)\n",
-    1e3 * renderer->GetFrameTime());
   std::printf("wrote %s\n", outName.c_str());
   return 0;
 }

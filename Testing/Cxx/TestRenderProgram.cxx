@@ -124,3 +124,33 @@ TEST(RenderProgram, AlphaMaskAndIds)
   EXPECT_EQ(Render("--ids '" + dir + "/x.txt'").status, 2);
   EXPECT_EQ(Render("--mask '" + dir + "/x.xyz'").status, 2);
 }
+
+// --json: one JSON object (read by Python's json), for one image and for a sequence; --quiet:
+// nothing printed on success.
+TEST(RenderProgram, JsonSummaryAndQuiet)
+{
+  const std::string dir = ::testing::TempDir();
+  const auto one = Render("--json -o '" + dir + "/catar_json.png'");
+  ASSERT_EQ(one.status, 0) << one.output;
+  const auto read = catar_test::RunProgram(CATAR_SYSTEM_PYTHON,
+    "-c 'import json, sys\nd = json.loads(sys.argv[1])\n"
+    "assert d[\"width\"] == 1328 and d[\"height\"] == 1048 and d[\"triangles\"] > 0, d\n"
+    "assert d[\"scene\"] is None and d[\"ids\"] is None, d\n"
+    "assert set(d[\"stages_ms\"]) >= {\"projection\", \"sort\", \"composite\"}, d\n"
+    "assert d[\"frame_ms\"] > 0, d' '" +
+      one.output + "'");
+  EXPECT_EQ(read.status, 0) << read.output << one.output;
+  const std::string scene = std::string(CATAR_SOURCE_DIR) + "/Data/scenes/moving-camera.yaml";
+  const auto sequence =
+    Render("'" + scene + "' --json --quiet --frames 0:2 -o '" + dir + "/catar_json_%02d.png'");
+  ASSERT_EQ(sequence.status, 0) << sequence.output;
+  const auto readSequence = catar_test::RunProgram(CATAR_SYSTEM_PYTHON,
+    "-c 'import json, sys\nd = json.loads(sys.argv[1])\n"
+    "assert d[\"frames\"] == 2 and d[\"first\"] == 0 and d[\"last\"] == 1, d\n"
+    "assert d[\"stages_ms\"][\"composite\"][\"mean\"] > 0, d' '" +
+      sequence.output + "'");
+  EXPECT_EQ(readSequence.status, 0) << readSequence.output << sequence.output;
+  const auto quiet = Render("--quiet -o '" + dir + "/catar_quiet.png'");
+  EXPECT_EQ(quiet.status, 0);
+  EXPECT_EQ(quiet.output, "");
+}
