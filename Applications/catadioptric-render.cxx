@@ -315,7 +315,8 @@ int main(int argc, char* argv[])
   std::string markers;
   double adaptive = 0.0;
   int antialiasSamples = 0;
-  bool antialias = false, printDemo = false, alpha = false;
+  bool antialias = false, printDemo = false, alpha = false, reference = false;
+  int referenceSamples = 1;
   std::string maskName, idsName;
 
   CLI::App app("Renders SCENE (YAML or JSON, README \"Scene files\") to OUT and prints the time "
@@ -377,6 +378,13 @@ int main(int argc, char* argv[])
   app.add_option("--ids", idsName,
     "also write the visible triangle per pixel as a NumPy .npy array of int64, rows top first: "
     "mesh * 2^32 + cell, -1 for none");
+  auto* referenceFlag = app.add_flag("--reference", reference,
+    "render with the exact reference ray tracer instead of the fast path (README \"The "
+    "reference ray tracer\"; overrides the scene's 'renderer')");
+  app.add_option("--samples", referenceSamples, "the reference's rays per pixel side (1 to 8)")
+    ->type_name("N")
+    ->check(CLI::Range(1, 8))
+    ->needs(referenceFlag);
   app.add_flag("--quiet", Quiet, "print errors and warnings only (no progress, no summary)");
   app.add_flag(
     "--json", Json, "print the summary (sizes, counts, the time of each stage) as one JSON object");
@@ -435,6 +443,7 @@ int main(int argc, char* argv[])
   renderer->SetAdaptiveTolerance(adaptive);
   renderer->SetAntialias(antialiasing);
   renderer->SetTransparentBackground(alpha);
+  renderer->SetReferenceSamples(reference ? referenceSamples : 0);
   renderer->SetOutputVisibleTriangle(!maskName.empty() || !idsName.empty());
   if (!renderer->LoadScene())
   {

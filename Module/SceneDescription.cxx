@@ -507,9 +507,9 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     throw fs::ParseError("a scene must be a map of keys (camera, output, objects, ...)");
   }
   fs::CheckKeys(root,
-    { "camera", "output", "solver", "cull_back_faces", "visibility", "edges", "adaptive",
-      "antialias", "background", "lighting", "remesh", "objects", "trajectory", "sequence",
-      "markers" });
+    { "camera", "output", "solver", "renderer", "reference_samples", "cull_back_faces",
+      "visibility", "edges", "adaptive", "antialias", "background", "lighting", "remesh", "objects",
+      "trajectory", "sequence", "markers" });
   const fs::Node cam = root["camera"];
   if (cam.isString())
   {
@@ -631,6 +631,18 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   {
     scene.antialiasSamples = fs::Flag(root, "antialias", false) ? 4 : 0;
   }
+  scene.renderer = fs::String(root, "renderer", scene.renderer);
+  if (scene.renderer != "fast" && scene.renderer != "reference")
+  {
+    throw fs::ParseError("'renderer' must be 'fast' or 'reference', not '" + scene.renderer + "'");
+  }
+  const double referenceSamples = fs::Number(root, "reference_samples", 1.0);
+  if (!(referenceSamples >= 1 && referenceSamples <= 8 &&
+        referenceSamples == std::floor(referenceSamples)))
+  {
+    throw fs::ParseError("'reference_samples' must be a whole number from 1 to 8");
+  }
+  scene.referenceSamples = static_cast<int>(referenceSamples);
   scene.visibility = fs::String(root, "visibility", scene.visibility);
   if (scene.visibility != "painter" && scene.visibility != "depth")
   {

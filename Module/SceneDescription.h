@@ -172,6 +172,11 @@ struct SceneDescription
   /// object's own `adaptive` overrides it for that object.
   double boundaryTolerance = 0.25;
   double adaptiveTolerance = 0.0;
+  /// Key `renderer`: "fast" (default: projection, lighting, sort, compositing) or "reference"
+  /// (the exact ray tracer); key `reference_samples` (1 to 8, default 1): its samples per pixel
+  /// side.
+  std::string renderer = "fast";
+  int referenceSamples = 1;
   /// Key `antialias`: true (4 x 4 samples), false (default), or `{ samples: S }` (S = 2, 3 or 4
   /// per pixel side): vtkCatadioptricCompositor's Antialias and AntialiasSamples. 0: off.
   int antialiasSamples = 0;

@@ -17,6 +17,7 @@
 #include "vtkCatadioptricOccluders.h"
 #include "vtkCatadioptricPainterSort.h"
 #include "vtkCatadioptricProjection.h"
+#include "vtkCatadioptricRayTracer.h"
 #include "vtkCatadioptricSceneObjects.h"
 #include "vtkCellData.h"
 #include "vtkExecutive.h"
@@ -167,6 +168,10 @@ struct vtkCatadioptricSceneRenderer::Internals
   std::vector<vtkSmartPointer<vtkCatadioptricLighting>> Lightings;
   std::vector<vtkSmartPointer<vtkCatadioptricPainterSort>> Sorts;
   vtkNew<vtkCatadioptricCompositor> Compositor;
+  // The exact reference renderer, used instead of the fast path (projection, lighting, sort,
+  // compositor) when UseReference.
+  vtkNew<vtkCatadioptricRayTracer> Tracer;
+  bool UseReference = false;
   // Every object's mesh, for the shadows: one ray-query structure shared by the lighting filters.
   vtkNew<vtkCatadioptricOccluders> Occluders;
 
@@ -452,6 +457,13 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     return false;
   }
   in.Compositor->RemoveAllTextureConnections();
+  in.Tracer->RemoveAllTextureConnections();
+  in.Tracer->RemoveAllInputConnections(1);
+  // Scene key `renderer` (fast or reference), or the renderer's ReferenceSamples.
+  in.UseReference = this->ReferenceSamples > 0 || scene.renderer == "reference";
+  in.Tracer->SetSamples(
+    this->ReferenceSamples > 0 ? this->ReferenceSamples : scene.referenceSamples);
+  in.Tracer->SetCamera(in.Camera);
   // Scene key `visibility`: painter order (default) or a depth buffer on the path length.
   in.Compositor->SetVisibility(scene.visibility == "depth" ? vtkCatadioptricCompositor::DEPTH_BUFFER
                                                            : vtkCatadioptricCompositor::PAINTER);
@@ -473,7 +485,9 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     }
     try
     {
-      in.Compositor->AddTextureData(vtkCatadioptricSceneObjects::Texture(o));
+      vtkSmartPointer<vtkImageData> texture = vtkCatadioptricSceneObjects::Texture(o);
+      in.Compositor->AddTextureData(texture);
+      in.Tracer->AddTextureData(texture);
     }
     catch (const std::exception& e)
     {
@@ -632,6 +646,19 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     in.Compositor->AddMeshConnection(sort->GetOutputPort());
     in.Projections.push_back(proj);
     in.Sorts.push_back(sort);
+    // The reference renderer: the same meshes in world coordinates, lit as the fast path.
+    if (movers[g])
+    {
+      in.Tracer->AddMeshConnection(movers[g]->GetOutputPort());
+    }
+    else
+    {
+      in.Tracer->AddMeshData(groups[g]);
+    }
+    if (lit)
+    {
+      in.Tracer->SetMeshLighting(static_cast<int>(g), in.Lightings.back());
+    }
   }
   auto t2 = Clock::now();
   in.Times[1] = Seconds(t1, t2);
@@ -687,9 +714,13 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     in.Compositor->SetBackgroundColor(bg.color.x(), bg.color.y(), bg.color.z(), 1.0);
     in.Compositor->SetImageSize(model.intrinsics.width, model.intrinsics.height);
   }
+  in.Tracer->SetFrameConnection(nullptr);
+  in.Tracer->SetImageSize(model.intrinsics.width, model.intrinsics.height);
+  in.Tracer->SetBackgroundColor(in.Compositor->GetBackgroundColor());
   if (in.Background && !this->TransparentBackground)
   {
     in.Compositor->SetFrameConnection(in.Background->GetOutputPort());
+    in.Tracer->SetFrameConnection(in.Background->GetOutputPort());
   }
   if (this->TransparentBackground)
   {
@@ -697,8 +728,10 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     // sequence and the poses from markers).
     in.Compositor->SetBackgroundColor(0.0, 0.0, 0.0, 0.0);
     in.Compositor->SetImageSize(model.intrinsics.width, model.intrinsics.height);
+    in.Tracer->SetBackgroundColor(0.0, 0.0, 0.0, 0.0);
   }
   in.Compositor->SetOutputVisibleTriangle(this->OutputVisibleTriangle);
+  in.Tracer->SetOutputVisibleTriangle(this->OutputVisibleTriangle);
   if (!in.ApplyFrame(0))
   {
     vtkErrorMacro(<< in.Error);
@@ -831,6 +864,21 @@ bool vtkCatadioptricSceneRenderer::Render()
     }
   }
   auto t1 = Clock::now();
+  if (in.UseReference)
+  {
+    // Every frame anew (lights and objects may move without touching the tracer).
+    in.Tracer->Modified();
+    if (!in.Tracer->GetExecutive()->Update())
+    {
+      return fail("reference renderer");
+    }
+    auto tr = Clock::now();
+    in.Times[2] = Seconds(t0, t1);
+    in.Times[3] = in.Times[4] = in.Times[5] = 0.0;
+    in.Times[6] = Seconds(t1, tr); // reported as the composite stage
+    in.Error.clear();
+    return true;
+  }
   for (auto& p : in.Projections)
   {
     if (!p->GetExecutive()->Update())
@@ -871,7 +919,8 @@ bool vtkCatadioptricSceneRenderer::Render()
 
 vtkImageData* vtkCatadioptricSceneRenderer::GetOutput()
 {
-  return this->Internal->Compositor->GetOutput();
+  return this->Internal->UseReference ? this->Internal->Tracer->GetOutput()
+                                      : this->Internal->Compositor->GetOutput();
 }
 
 bool vtkCatadioptricSceneRenderer::WriteImage(const char* fileName)

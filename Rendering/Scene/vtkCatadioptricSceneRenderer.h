@@ -65,6 +65,15 @@ public:
   ///@}
 
   ///@{
+  /// ReferenceSamples (default 0: the scene's key `renderer`): above 0, render with the exact
+  /// reference ray tracer (vtkCatadioptricRayTracer) instead of the fast path, with this many
+  /// samples per pixel side (1 to 8); its time is reported as the composite stage. Applied at
+  /// the next LoadScene().
+  vtkSetClampMacro(ReferenceSamples, int, 0, 8);
+  vtkGetMacro(ReferenceSamples, int);
+  ///@}
+
+  ///@{
   /// TransparentBackground (default off): the objects alone over a transparent background
   /// (alpha 0), whatever the scene's background (a video or image background still sets the
   /// sequence and the poses from markers). Applied at the next LoadScene().
@@ -195,6 +204,7 @@ protected:
   double AdaptiveTolerance = 0.0;
   int Antialias = 0;
   bool TransparentBackground = false;
+  int ReferenceSamples = 0;
   bool OutputVisibleTriangle = false;
   char* MarkerBoardFileName = nullptr;
 

@@ -154,3 +154,33 @@ TEST(RenderProgram, JsonSummaryAndQuiet)
   EXPECT_EQ(quiet.status, 0);
   EXPECT_EQ(quiet.output, "");
 }
+
+// --reference renders with the exact ray tracer: the same silhouette as the fast path (the demo's
+// triangles are small), other pixels here and there; --samples needs it.
+TEST(RenderProgram, ReferenceRenderer)
+{
+  const std::string dir = ::testing::TempDir();
+  const std::string fast = dir + "/catar_fast_ids.npy", exact = dir + "/catar_exact_ids.npy";
+  const auto a = Render("--quiet -o '" + dir + "/catar_fast.png' --ids '" + fast + "'");
+  ASSERT_EQ(a.status, 0) << a.output;
+  const auto b = Render("--quiet --reference --samples 2 -o '" + dir + "/catar_exact.png' --ids '" +
+    exact + "' --json");
+  ASSERT_EQ(b.status, 0) << b.output;
+  const auto compare = catar_test::RunProgram(CATAR_SYSTEM_PYTHON,
+    "-c 'import numpy, PIL.Image as I\n"
+    "f = numpy.load(\"" +
+      fast + "\") >= 0\ne = numpy.load(\"" + exact +
+      "\") >= 0\n"
+      "iou = (f & e).sum() / (f | e).sum()\n"
+      "a = numpy.asarray(I.open(\"" +
+      dir +
+      "/catar_fast.png\")).astype(int)\n"
+      "b = numpy.asarray(I.open(\"" +
+      dir +
+      "/catar_exact.png\")).astype(int)\n"
+      "print(\"IoU\", iou, \"differing pixels\", (abs(a - b).max(axis=2) > 8).sum())\n"
+      "assert iou > 0.97, iou\nassert (a != b).any()'");
+  EXPECT_EQ(compare.status, 0) << compare.output;
+  std::cout << "[ cli      ] fast against --reference: " << compare.output;
+  EXPECT_EQ(Render("--samples 2").status, 2);
+}

@@ -184,6 +184,27 @@ TEST(SceneDescription, EdgesAndAdaptive)
   }
 }
 
+TEST(SceneDescription, Renderer)
+{
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(ParseScene(std::string(kCamera), "", s, error)) << error;
+  EXPECT_EQ(s.renderer, "fast");
+  ASSERT_TRUE(
+    ParseScene(std::string(kCamera) + "renderer: reference\nreference_samples: 3\n", "", s, error))
+    << error;
+  EXPECT_EQ(s.renderer, "reference");
+  EXPECT_EQ(s.referenceSamples, 3);
+  for (const char* bad :
+    { "renderer: exact\n", "reference_samples: 9\n", "reference_samples: 1.5\n" })
+  {
+    EXPECT_FALSE(ParseScene(std::string(kCamera) + bad, "", s, error)) << bad;
+    EXPECT_NE(error.find(bad[0] == 'r' && bad[2] == 'n' ? "renderer" : "reference_samples"),
+      std::string::npos)
+      << error;
+  }
+}
+
 TEST(SceneDescription, Antialias)
 {
   SceneDescription s;
