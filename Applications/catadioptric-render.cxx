@@ -5,6 +5,7 @@
 //                       [--adaptive P] [--antialias] [--antialias-samples S]
 //                       [--target-area A | --pixel-tolerance P] [--print-demo-scene] [--version]
 // (--help lists them; CLI11 parses them: --option value or --option=value.)
+#include "vtkCallbackCommand.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricParallel.h"
@@ -181,6 +182,60 @@ std::string HoursMinutes(double seconds)
 }
 
 // The progress line: a bar on a terminal (rewritten in place), a line every tenth otherwise.
+// Long work's progress (remeshing, a reference render): after a second (the environment's
+// CATAR_PROGRESS_AFTER seconds), a bar with the time left on a terminal, else a line at every
+// tenth; nothing with --quiet or --json.
+struct WorkProgress
+{
+  std::string text;
+  Clock::time_point start;
+  int tenths = -1;
+  bool shown = false;
+};
+
+void OnProgress(vtkObject* caller, unsigned long, void* clientData, void* callData)
+{
+  auto* p = static_cast<WorkProgress*>(clientData);
+  auto* renderer = static_cast<vtkCatadioptricSceneRenderer*>(caller);
+  const double fraction = callData ? *static_cast<double*>(callData) : 0.0;
+  const std::string text = renderer->GetProgressText();
+  const auto now = Clock::now();
+  if (text != p->text || fraction <= 0.0)
+  {
+    p->text = text;
+    p->start = now;
+    p->tenths = -1;
+    p->shown = false;
+  }
+  const double elapsed = Seconds(p->start, now);
+  static const double after =
+    std::getenv("CATAR_PROGRESS_AFTER") ? std::atof(std::getenv("CATAR_PROGRESS_AFTER")) : 1.0;
+  if (Quiet || Json || (elapsed < after && !p->shown))
+  {
+    return;
+  }
+  const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  if (isatty(fileno(stderr)))
+  {
+    const int width = 30, filled = static_cast<int>(width * std::min(1.0, fraction));
+    std::fprintf(stderr, "\r%s [%s%s] %3.0f%%, %s left ", text.c_str(),
+      std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), 100.0 * fraction,
+      HoursMinutes(left).c_str());
+    if (fraction >= 1.0)
+    {
+      std::fputc('\n', stderr);
+    }
+  }
+  else if (static_cast<int>(10 * fraction) != p->tenths)
+  {
+    p->tenths = static_cast<int>(10 * fraction);
+    std::fprintf(
+      stderr, "%s: %3.0f%%, %s left\n", text.c_str(), 100.0 * fraction, HoursMinutes(left).c_str());
+  }
+  p->shown = true;
+  std::fflush(stderr);
+}
+
 void Progress(long long done, long long total, double elapsed, bool terminal)
 {
   if (Quiet)
@@ -436,6 +491,11 @@ int main(int argc, char* argv[])
   }
 
   vtkNew<vtkCatadioptricSceneRenderer> renderer;
+  WorkProgress workProgress;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetCallback(OnProgress);
+  onProgress->SetClientData(&workProgress);
+  renderer->AddObserver(vtkCommand::ProgressEvent, onProgress);
   renderer->SetSceneFileName(scene.empty() ? nullptr : scene.c_str());
   renderer->SetRemeshTargetArea(targetArea);
   renderer->SetRemeshPixelTolerance(pixelTolerance);

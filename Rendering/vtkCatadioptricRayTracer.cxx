@@ -487,14 +487,22 @@ int vtkCatadioptricRayTracer::RequestData(
   // Statistics per band, summed after the loop (no thread-local storage: the pool's threads are
   // not VTK's).
   std::vector<catar::RayTraceStatistics> statistics(static_cast<size_t>(bands));
-  vtkCatadioptricParallel::For(0, bands, 1, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType band = b; band < e; ++band)
-    {
-      tracer.RenderRows(view, idData, -static_cast<std::ptrdiff_t>(width),
-        static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand),
-        &statistics[static_cast<size_t>(band)]);
-    }
-  });
+  // In tenths, with the progress reported between them (from this thread: VTK's events are not
+  // for the loop's threads).
+  constexpr int kParts = 10;
+  for (int part = 0; part < kParts; ++part)
+  {
+    const int b0 = bands * part / kParts, b1 = bands * (part + 1) / kParts;
+    vtkCatadioptricParallel::For(b0, b1, 1, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType band = b; band < e; ++band)
+      {
+        tracer.RenderRows(view, idData, -static_cast<std::ptrdiff_t>(width),
+          static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand),
+          &statistics[static_cast<size_t>(band)]);
+      }
+    });
+    this->UpdateProgress(0.3 + 0.7 * (part + 1) / kParts);
+  }
   for (const catar::RayTraceStatistics& s : statistics)
   {
     this->NumberOfMirrorRays += static_cast<vtkIdType>(s.mirrorRays);

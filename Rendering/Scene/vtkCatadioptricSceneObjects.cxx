@@ -504,7 +504,8 @@ vtkSmartPointer<vtkImageData> vtkCatadioptricSceneObjects::ReadTexture(const std
 }
 
 vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::Remesh(vtkPolyData* mesh,
-  const catar::SceneRemesh& remesh, vtkCatadioptricCamera* camera, std::string& report)
+  const catar::SceneRemesh& remesh, vtkCatadioptricCamera* camera, std::string& report,
+  vtkCommand* progress)
 {
   report.clear();
   if (remesh.mode == "none")
@@ -536,6 +537,10 @@ vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::Remesh(vtkPolyData* me
   warningCallback->SetCallback(&WarningCollector::Callback);
   warningCallback->SetClientData(&warnings);
   remesher->AddObserver(vtkCommand::WarningEvent, warningCallback);
+  if (progress)
+  {
+    remesher->AddObserver(vtkCommand::ProgressEvent, progress);
+  }
   remesher->Update();
   if (remesher->GetErrorCode() != 0 || !errors.Messages.empty())
   {

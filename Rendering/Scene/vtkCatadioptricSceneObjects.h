@@ -14,6 +14,7 @@
 #include <string> // for std::string
 
 class vtkCatadioptricCamera;
+class vtkCommand;
 class vtkImageData;
 class vtkPolyData;
 namespace catar
@@ -33,9 +34,10 @@ public:
 
   /// Prepares `mesh` as `remesh` says (vtkCatadioptricRemesher; `camera` for the pixel
   /// tolerance). Returns the mesh unchanged for mode "none". `report` receives one line on what
-  /// was done (triangle counts, steps, and the achieved edge bend in pixel mode).
+  /// was done (triangle counts, steps, and the achieved edge bend in pixel mode). `progress`, if
+  /// given, observes the remesher's ProgressEvent.
   static vtkSmartPointer<vtkPolyData> Remesh(vtkPolyData* mesh, const catar::SceneRemesh& remesh,
-    vtkCatadioptricCamera* camera, std::string& report);
+    vtkCatadioptricCamera* camera, std::string& report, vtkCommand* progress = nullptr);
 
   /// A texture image: "checker" (a generated 256 x 256 RGB checkerboard) or an 8-bit image file.
   static vtkSmartPointer<vtkImageData> ReadTexture(const std::string& file);

@@ -7,6 +7,7 @@
 #include "VideoIO.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
@@ -172,6 +173,9 @@ struct vtkCatadioptricSceneRenderer::Internals
   // compositor) when UseReference.
   vtkNew<vtkCatadioptricRayTracer> Tracer;
   bool UseReference = false;
+  // Progress of long work, passed on as the renderer's ProgressEvent.
+  std::string ProgressText;
+  vtkNew<vtkCallbackCommand> Progress;
   // Every object's mesh, for the shadows: one ray-query structure shared by the lighting filters.
   vtkNew<vtkCatadioptricOccluders> Occluders;
 
@@ -300,6 +304,21 @@ bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
 vtkCatadioptricSceneRenderer::vtkCatadioptricSceneRenderer()
   : Internal(new Internals)
 {
+  // The remeshers' and the reference renderer's progress, passed on as the renderer's.
+  this->Internal->Progress->SetClientData(this);
+  this->Internal->Progress->SetCallback(
+    [](vtkObject* caller, unsigned long, void* clientData, void*) {
+      auto* self = static_cast<vtkCatadioptricSceneRenderer*>(clientData);
+      auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
+      double fraction = algorithm ? algorithm->GetProgress() : 0.0;
+      self->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
+    });
+  this->Internal->Tracer->AddObserver(vtkCommand::ProgressEvent, this->Internal->Progress);
+}
+
+const char* vtkCatadioptricSceneRenderer::GetProgressText()
+{
+  return this->Internal->ProgressText.c_str();
 }
 
 vtkCatadioptricSceneRenderer::~vtkCatadioptricSceneRenderer()
@@ -441,8 +460,9 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
         o.remesh.pixelTolerance = this->RemeshPixelTolerance;
       }
       std::string report;
+      in.ProgressText = "remeshing " + (o.name.empty() ? o.type : o.name);
       meshes.push_back(vtkCatadioptricSceneObjects::Remesh(
-        vtkCatadioptricSceneObjects::BuildObject(o), o.remesh, in.Camera, report));
+        vtkCatadioptricSceneObjects::BuildObject(o), o.remesh, in.Camera, report, in.Progress));
       if (!report.empty())
       {
         in.MeshReports += (o.name.empty() ? o.type : o.name) + ": " + report + "\n";
@@ -868,6 +888,7 @@ bool vtkCatadioptricSceneRenderer::Render()
   {
     // Every frame anew (lights and objects may move without touching the tracer).
     in.Tracer->Modified();
+    in.ProgressText = "reference render";
     if (!in.Tracer->GetExecutive()->Update())
     {
       return fail("reference renderer");

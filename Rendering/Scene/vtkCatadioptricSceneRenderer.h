@@ -167,6 +167,11 @@ public:
   /// .exr where available; catar::WriteImageFile). Returns false on failure (GetLastError()).
   bool WriteImage(const char* fileName);
 
+  /// Long work -- remeshing an object, a reference render -- invokes vtkCommand::ProgressEvent on
+  /// the renderer with a `double*` fraction in [0, 1] as call data; GetProgressText() names the
+  /// work ("remeshing bunny", "reference render").
+  const char* GetProgressText();
+
   /// The scene's camera; change its pose and call Render() again for a new frame.
   vtkCatadioptricCamera* GetCamera();
 

@@ -184,3 +184,22 @@ TEST(RenderProgram, ReferenceRenderer)
   std::cout << "[ cli      ] fast against --reference: " << compare.output;
   EXPECT_EQ(Render("--samples 2").status, 2);
 }
+
+// Long work shows its progress (here from the start: CATAR_PROGRESS_AFTER=0), a line at every
+// tenth when standard error is not a terminal; --quiet shows none.
+TEST(RenderProgram, ProgressOfLongWork)
+{
+  const std::string dir = ::testing::TempDir();
+  const auto shown = catar_test::RunProgram("/usr/bin/env",
+    "CATAR_PROGRESS_AFTER=0 '" + std::string(CATAR_RENDER_PROGRAM) + "' --reference -o '" + dir +
+      "/catar_progress.png' --pixel-tolerance 4");
+  ASSERT_EQ(shown.status, 0) << shown.output;
+  EXPECT_NE(shown.output.find("reference render: 100%"), std::string::npos) << shown.output;
+  EXPECT_NE(shown.output.find("remeshing "), std::string::npos) << shown.output;
+  EXPECT_EQ(shown.output.find('\r'), std::string::npos) << "a bar where no terminal is";
+  const auto quiet = catar_test::RunProgram("/usr/bin/env",
+    "CATAR_PROGRESS_AFTER=0 '" + std::string(CATAR_RENDER_PROGRAM) + "' --reference --quiet -o '" +
+      dir + "/catar_progress.png'");
+  EXPECT_EQ(quiet.status, 0);
+  EXPECT_EQ(quiet.output, "");
+}
