@@ -78,6 +78,27 @@ MirrorDescription ReadMirror(const Node& mirror)
   }
   return d;
 }
+
+// A matrix as a list of numbers, or in ROS camera_info's form { rows, cols, data }; n numbers
+// (0: any count).
+std::vector<double> MatrixNumbers(const Node& node, const std::string& key, std::size_t n)
+{
+  if (node.isMap())
+  {
+    const double rows = Number(node, "rows"), cols = Number(node, "cols");
+    const std::vector<double> data = Numbers(node["data"], key + ".data");
+    if (!(rows >= 1 && cols >= 1 && rows * cols == static_cast<double>(data.size())))
+    {
+      throw ParseError("'" + key + "': rows x cols must be the number of values in data");
+    }
+    if (n > 0 && data.size() != n)
+    {
+      throw ParseError("'" + key + "' must have " + std::to_string(n) + " numbers");
+    }
+    return data;
+  }
+  return n > 0 ? Numbers(node, key, n) : Numbers(node, key);
+}
 } // namespace
 
 void ReadCalibration(const Node& node, CameraModel& m)
@@ -101,7 +122,7 @@ void ReadCalibration(const Node& node, CameraModel& m)
   }
   model.intrinsics.width = static_cast<int>(w);
   model.intrinsics.height = static_cast<int>(h);
-  const std::vector<double> K = Numbers(node["camera_matrix"], "camera_matrix", 9);
+  const std::vector<double> K = MatrixNumbers(node["camera_matrix"], "camera_matrix", 9);
   if (K[3] != 0.0 || K[6] != 0.0 || K[7] != 0.0 || K[8] != 1.0)
   {
     throw ParseError("'camera_matrix' must be [fx s cx; 0 fy cy; 0 0 1]");
@@ -111,10 +132,17 @@ void ReadCalibration(const Node& node, CameraModel& m)
   model.intrinsics.cx = K[2];
   model.intrinsics.fy = K[4];
   model.intrinsics.cy = K[5];
+  // ROS camera_info names its model: plumb_bob (OpenCV's k1 k2 p1 p2 k3) is the one read.
+  const std::string distortionModel = String(node, "distortion_model", "plumb_bob");
+  if (distortionModel != "plumb_bob")
+  {
+    throw ParseError(
+      "'distortion_model' " + distortionModel + " is not supported (plumb_bob: k1 k2 p1 p2 k3)");
+  }
   const Node dn = node["distortion_coefficients"];
   if (!dn.empty() && !dn.isNone())
   {
-    std::vector<double> d = Numbers(dn, "distortion_coefficients");
+    std::vector<double> d = MatrixNumbers(dn, "distortion_coefficients", 0);
     if (d.size() != 4 && d.size() != 5)
     {
       throw ParseError("'distortion_coefficients' must have 4 or 5 numbers (k1 k2 p1 p2 [k3]); "

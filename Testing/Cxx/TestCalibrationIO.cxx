@@ -245,6 +245,49 @@ mirror:
   }
 }
 
+// ROS camera_info, as ROS's camera_calibration writes it, with the mirror beside it: the lens as
+// the same calibration written with plain lists.
+TEST(CalibrationIO, ReadsRosCameraInfoForTheLens)
+{
+  const std::string mirror = "mirror: { center: [0, 0, 0.14], radius: 0.05 }\n";
+  const std::string ros = "image_width: 640\nimage_height: 480\ncamera_name: narrow_stereo\n"
+                          "camera_matrix:\n  rows: 3\n  cols: 3\n"
+                          "  data: [480.5, 0.0, 319.25, 0.0, 481.0, 239.75, 0.0, 0.0, 1.0]\n"
+                          "distortion_model: plumb_bob\n"
+                          "distortion_coefficients:\n  rows: 1\n  cols: 5\n"
+                          "  data: [-0.1, 0.02, 0.001, -0.002, 0.0005]\n"
+                          "rectification_matrix:\n  rows: 3\n  cols: 3\n"
+                          "  data: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n"
+                          "projection_matrix:\n  rows: 3\n  cols: 4\n"
+                          "  data: [480.5, 0, 319.25, 0, 0, 481.0, 239.75, 0, 0, 0, 1, 0]\n" +
+    mirror;
+  const std::string plain =
+    "image_width: 640\nimage_height: 480\n"
+    "camera_matrix: [480.5, 0.0, 319.25, 0.0, 481.0, 239.75, 0.0, 0.0, 1.0]\n"
+    "distortion_coefficients: [-0.1, 0.02, 0.001, -0.002, 0.0005]\n" +
+    mirror;
+  CameraModel a, b;
+  std::string error;
+  ASSERT_TRUE(ParseCalibration(ros, a, error)) << error;
+  ASSERT_TRUE(ParseCalibration(plain, b, error)) << error;
+  EXPECT_EQ(a.intrinsics.fx, 480.5);
+  EXPECT_EQ(a.intrinsics.cy, 239.75);
+  EXPECT_EQ(a.distortion.k1, -0.1);
+  EXPECT_EQ(a.distortion.k3, 0.0005);
+  EXPECT_EQ(a.intrinsics.fx, b.intrinsics.fx);
+  EXPECT_EQ(a.intrinsics.fy, b.intrinsics.fy);
+  EXPECT_EQ(a.distortion.p2, b.distortion.p2);
+  // Other models, and matrices whose size does not match, are refused by name.
+  std::string other = ros;
+  other.replace(other.find("plumb_bob"), 9, "rational_polynomial");
+  EXPECT_FALSE(ParseCalibration(other, a, error));
+  EXPECT_NE(error.find("distortion_model"), std::string::npos) << error;
+  std::string wrong = ros;
+  wrong.replace(wrong.find("rows: 1"), 7, "rows: 2");
+  EXPECT_FALSE(ParseCalibration(wrong, a, error));
+  EXPECT_NE(error.find("distortion_coefficients"), std::string::npos) << error;
+}
+
 TEST(CalibrationIO, SavesOnlyFormatsItReads)
 {
   std::string error;
