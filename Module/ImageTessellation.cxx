@@ -294,7 +294,6 @@ private:
     return -1;
   }
 
-  // Whether the piece edge (p, q) lies on an input edge that a neighbour splits at its midpoint.
   // An edge between two nodes, by their weights (the smaller first).
   using EdgeWeights = std::pair<std::array<double, 3>, std::array<double, 3>>;
   EdgeWeights KeyOf(int p, int q) const
