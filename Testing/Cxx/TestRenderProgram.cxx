@@ -159,6 +159,10 @@ TEST(RenderProgram, JsonSummaryAndQuiet)
 // triangles are small), other pixels here and there; --samples needs it.
 TEST(RenderProgram, ReferenceRenderer)
 {
+  if (catar_test::RunProgram(CATAR_SYSTEM_PYTHON, "-c 'import numpy, PIL'").status != 0)
+  {
+    GTEST_SKIP() << "no numpy and PIL in " << CATAR_SYSTEM_PYTHON;
+  }
   const std::string dir = ::testing::TempDir();
   const std::string fast = dir + "/catar_fast_ids.npy", exact = dir + "/catar_exact_ids.npy";
   const auto a = Render("--quiet -o '" + dir + "/catar_fast.png' --ids '" + fast + "'");
