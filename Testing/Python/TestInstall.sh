@@ -16,6 +16,19 @@ assert cam.IsValid(), cam.GetLastError()
 print('imported', car.__file__)
 assert car.__file__.startswith('$prefix'), car.__file__
 "
+# Without PYTHONPATH: Debian's python3 adds <prefix>/lib/python3.X/dist-packages as a site folder
+# below /usr/local (site.addsitedir here, for the temporary prefix), whose .pth file names the
+# package's folder.
+version=$("$python" -c "import sys; print('%d.%d' % sys.version_info[:2])")
+test -f "$prefix/lib/python$version/dist-packages/catadioptricar.pth"
+"$python" -c "
+import site, sys
+site.addsitedir('$prefix/lib/python$version/dist-packages')
+import catadioptricar as car
+assert car.__file__.startswith('$prefix'), car.__file__
+assert car.vtkCatadioptricCamera().IsValid()
+print('imported through the .pth file:', car.__file__)
+"
 "$prefix/bin/catadioptric-render" --help > /dev/null
 # The licence and citation file.
 test -f "$prefix/share/doc/CatadioptricAR/LICENSE"
