@@ -612,7 +612,10 @@ private:
 };
 } // namespace
 
-TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3>& world,
+namespace
+{
+// The fate of a triangle not seen at every corner (or with a corner that is not a point).
+TriangleFate FateNotSeenWhole(const Projector& projector, const std::array<Vec3, 3>& world,
   const std::array<ProjectedPoint, 3>& projected, const TessellationOptions& options)
 {
   for (int i = 0; i < 3; ++i)
@@ -622,40 +625,11 @@ TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3
       return TriangleFate::Drop; // a corner that is not a point (NaN, Inf)
     }
   }
-  const int seen = int(Seen(projected[0])) + int(Seen(projected[1])) + int(Seen(projected[2]));
-  if (seen == 3)
-  {
-    // The edge midpoints that are measured, side by side, each from its ends' reflection points.
-    Vec3 mids[3], guesses[3];
-    ProjectedPoint mid[3];
-    int edges[3];
-    std::size_t n = 0;
-    for (int i = 0; i < 3; ++i)
-    {
-      const int j = (i + 1) % 3;
-      if (Measured(projected[i], projected[j], options))
-      {
-        mids[n] = 0.5 * (world[i] + world[j]);
-        guesses[n] = 0.5 * (projected[i].mirrorPoint + projected[j].mirrorPoint);
-        edges[n++] = i;
-      }
-    }
-    projector.ProjectWorldNear(n, mids, guesses, mid);
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      const int i = edges[k];
-      if (NeedsSplit(projected[i], projected[(i + 1) % 3], mid[k], options))
-      {
-        return TriangleFate::Tessellate;
-      }
-    }
-    return TriangleFate::Keep;
-  }
   if (!(options.boundaryTolerance > 0.0))
   {
     return TriangleFate::Drop;
   }
-  if (seen > 0)
+  if (Seen(projected[0]) || Seen(projected[1]) || Seen(projected[2]))
   {
     return TriangleFate::Tessellate;
   }
@@ -671,13 +645,22 @@ TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3
   }
   return TriangleFate::Drop;
 }
+} // namespace
+
+TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3>& world,
+  const std::array<ProjectedPoint, 3>& projected, const TessellationOptions& options)
+{
+  TriangleFate fate;
+  TriangleFates(projector, 1, &world, &projected, options, &fate);
+  return fate;
+}
 
 void TriangleFates(const Projector& projector, std::size_t n, const std::array<Vec3, 3>* world,
   const std::array<ProjectedPoint, 3>* projected, const TessellationOptions& options,
   TriangleFate* out)
 {
-  // The triangles seen at their corners: their measured edges' midpoints, all together.
-  std::vector<std::size_t> whole;
+  // The triangles seen at their corners: their measured edges' midpoints (each from its ends'
+  // reflection points), all together, side by side.
   std::vector<int> edges; // per midpoint: triangle * 3 + edge
   std::vector<Vec3> mids, guesses;
   for (std::size_t t = 0; t < n; ++t)
@@ -689,7 +672,7 @@ void TriangleFates(const Projector& projector, std::size_t n, const std::array<V
     }
     if (!seen)
     {
-      out[t] = TriangleFateOf(projector, world[t], projected[t], options);
+      out[t] = FateNotSeenWhole(projector, world[t], projected[t], options);
       continue;
     }
     out[t] = TriangleFate::Keep;
