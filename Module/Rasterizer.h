@@ -278,6 +278,15 @@ inline std::int32_t SampleGridPosition(std::int32_t snapped, int samples)
   return samples * snapped + (1 << (kRasterSubPixelBits - 1)) * (samples - 1);
 }
 
+/// SampleGridPosition of a triangle's three coordinates.
+inline void SampleGridPositions(const std::int32_t snapped[3], int samples, std::int32_t out[3])
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    out[k] = SampleGridPosition(snapped[k], samples);
+  }
+}
+
 /// Draws t at the S x S samples of pixel (x, y) -- S = samples, 2 to kMaxEdgeSamples -- into
 /// block, an S x S image whose pixel (i, j) is sample (i, j): the samples rasterizeSnappedTriangle
 /// covers on an image S times larger in each direction with the vertices moved to the sample grid

@@ -51,6 +51,18 @@ ArrayT* KeptArray(vtkSmartPointer<ArrayT>& kept, int nc, vtkIdType n)
   return kept;
 }
 
+// The id buffer (VTK row order, width x height values) addressed top row first, as the rasteriser
+// addresses pixels.
+catar::IdView TopRowFirst(catar::RasterId* ids, int width, int height)
+{
+  catar::IdView view;
+  view.data = ids + static_cast<std::ptrdiff_t>(width) * (height - 1); // top row: the last VTK row
+  view.width = width;
+  view.height = height;
+  view.rowStride = -static_cast<std::ptrdiff_t>(width);
+  return view;
+}
+
 // Draws the binned triangles onto view, band by band in parallel, each band its own triangles in
 // their order, so the drawing order holds within every pixel. Each band first writes its rows of
 // the background -- background(begin, end) for the pixels [begin, end) of the output, VTK row
@@ -76,14 +88,7 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
   }
   catar::DepthView test = write;
   test.write = false;
-  catar::IdView idView;
-  if (ids)
-  {
-    idView.data = ids + w * (height - 1); // top row (y = 0) is the last VTK row
-    idView.width = width;
-    idView.height = height;
-    idView.rowStride = -w;
-  }
+  const catar::IdView idView = ids ? TopRowFirst(ids, width, height) : catar::IdView();
   // One band per task, heaviest first: the object often covers only a few bands.
   vtkCatadioptricParallel::ForEachIndex(0, bins.GetNumberOfBands(), [&](vtkIdType i) {
     const int b = bins.GetBandByLoad(static_cast<int>(i));
@@ -409,14 +414,9 @@ int vtkCatadioptricCompositor::RequestData(
   DrawBands(view, *this->Bins, textures, background, depth, ids);
   if (samples > 1)
   {
-    catar::IdView idView;
-    idView.data = ids + static_cast<std::ptrdiff_t>(width) * (height - 1); // top row (y = 0)
-    idView.width = width;
-    idView.height = height;
-    idView.rowStride = -static_cast<std::ptrdiff_t>(width);
     const double* color = this->BackgroundColor;
     this->Edges->Draw(
-      view, idView, *this->Bins, textures, opaqueTexture,
+      view, TopRowFirst(ids, width, height), *this->Bins, textures, opaqueTexture,
       [&](int x, int y, std::uint8_t rgba[4]) {
         if (frameData)
         {

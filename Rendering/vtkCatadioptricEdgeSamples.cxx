@@ -329,10 +329,9 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
       const PixelBox box = Box(tx, ty, rect, width);
       x0 = std::min(x0, box.x0);
       x1 = std::max(x1, box.x1);
-      const std::int32_t fx[3] = { catar::SampleGridPosition(tx[0], samples),
-        catar::SampleGridPosition(tx[1], samples), catar::SampleGridPosition(tx[2], samples) };
-      const std::int32_t fy[3] = { catar::SampleGridPosition(ty[0], samples),
-        catar::SampleGridPosition(ty[1], samples), catar::SampleGridPosition(ty[2], samples) };
+      std::int32_t fx[3], fy[3];
+      catar::SampleGridPositions(tx, samples, fx);
+      catar::SampleGridPositions(ty, samples, fy);
       for (int y = box.y0; y <= box.y1; ++y)
       {
         std::uint8_t* mask = band.Mask.data() + static_cast<size_t>(width) * (y - rect.y0);

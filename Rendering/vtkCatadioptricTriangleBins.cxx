@@ -515,10 +515,9 @@ void vtkCatadioptricTriangleBins::MakeTriangles(Chunk& chunk)
           }
           else
           {
-            const std::int32_t fx[3] = { catar::SampleGridPosition(x[0], samples),
-              catar::SampleGridPosition(x[1], samples), catar::SampleGridPosition(x[2], samples) };
-            const std::int32_t fy[3] = { catar::SampleGridPosition(y[0], samples),
-              catar::SampleGridPosition(y[1], samples), catar::SampleGridPosition(y[2], samples) };
+            std::int32_t fx[3], fy[3];
+            catar::SampleGridPositions(x, samples, fx);
+            catar::SampleGridPositions(y, samples, fy);
             // The rows of its samples and of its pixel centres (not samples when S is even).
             const catar::PixelRect fine = catar::coveredPixelBounds(fx, fy, fineImage);
             rows = catar::coveredPixelBounds(x, y, image);

@@ -145,6 +145,17 @@ EdgeError Compare(const std::vector<unsigned char>& fast, const std::vector<unsi
   return e;
 }
 
+// A sphere of 48 x 24 facets in front of the mirror, whose silhouette runs across many pixels.
+vtkSmartPointer<vtkSphereSource> Sphere()
+{
+  auto sphere = vtkSmartPointer<vtkSphereSource>::New();
+  sphere->SetCenter(0.12, 0.2, 1.05);
+  sphere->SetRadius(0.06);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(24);
+  return sphere;
+}
+
 void CheckObject(const char* name, vtkAlgorithmOutput* mesh)
 {
   vtkNew<vtkCatadioptricCamera> camera;
@@ -189,11 +200,7 @@ TEST(Antialiasing, EdgesOverAFrameApproachTheExactCoverage)
 {
   // A sphere and a box in front of the mirror (world: the mirror at (0, 0, 1), the camera behind
   // it along -y), each of whose silhouettes runs across many pixels.
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0.12, 0.2, 1.05);
-  sphere->SetRadius(0.06);
-  sphere->SetThetaResolution(48);
-  sphere->SetPhiResolution(24);
+  auto sphere = Sphere();
   CheckObject("sphere", sphere->GetOutputPort());
   vtkNew<vtkCubeSource> cube;
   cube->SetBounds(-0.2, -0.05, 0.15, 0.3, 0.9, 1.05);
@@ -208,11 +215,7 @@ TEST(Antialiasing, DepthBufferSamplesAgreeWithPainterOrder)
   vtkNew<vtkCatadioptricCamera> camera;
   catar_test::SetSmallDemoCamera(camera);
   auto frame = Frame(camera->GetImageWidth(), camera->GetImageHeight());
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0.12, 0.2, 1.05);
-  sphere->SetRadius(0.06);
-  sphere->SetThetaResolution(48);
-  sphere->SetPhiResolution(24);
+  auto sphere = Sphere();
   const Render painter = Fast(camera, sphere->GetOutputPort(), frame, 4, false);
   const Render depth = Fast(camera, sphere->GetOutputPort(), frame, 4, true);
   ASSERT_GT(depth.edgePixels, 100);
