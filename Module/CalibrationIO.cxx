@@ -32,6 +32,29 @@ MirrorDescription ReadMirror(const Node& mirror)
   }
   const std::string typeName = String(mirror, "type", fallback.name);
   const MirrorType* type = FindMirrorType(typeName);
+  // The keys of the type's variants (a misspelt key is an error, not a silently used default).
+  std::vector<std::string> known = { "type" };
+  for (const MirrorType& t : MirrorTypes())
+  {
+    for (const MirrorParameter& p : t.parameters)
+    {
+      if (t.name == typeName && std::find(known.begin(), known.end(), p.key) == known.end())
+      {
+        known.push_back(p.key);
+      }
+    }
+  }
+  if (type)
+  {
+    try
+    {
+      CheckKeys(mirror, known);
+    }
+    catch (const ParseError& e)
+    {
+      throw ParseError("mirror type '" + typeName + "': " + e.what());
+    }
+  }
   // Of a name's variants, the first whose keys are all there (else the first, whose missing key
   // the error names).
   for (const MirrorType& t : MirrorTypes())
@@ -106,6 +129,20 @@ void ReadCalibration(const Node& node, CameraModel& m)
   if (!node.isMap())
   {
     throw ParseError("the calibration must be a map of keys");
+  }
+  CheckKeys(node,
+    { "image_width", "image_height", "camera_matrix", "distortion_model", "distortion_coefficients",
+      "mirror", "world_to_camera",
+      // Read past: the rest of a ROS camera_info file ...
+      "camera_name", "rectification_matrix", "projection_matrix",
+      // ... and of the files OpenCV's calibration samples write.
+      "calibration_time", "nframes", "nr_of_frames", "board_width", "board_height", "square_size",
+      "aspectRatio", "fix_aspect_ratio", "flags", "fisheye_model", "avg_reprojection_error",
+      "per_view_reprojection_errors", "extrinsic_parameters", "image_points", "grid_points" });
+  if (Flag(node, "fisheye_model", false))
+  {
+    throw ParseError("'fisheye_model': OpenCV's fisheye lens model is not supported (the lens is "
+                     "the pinhole with k1 k2 p1 p2 k3)");
   }
   CameraModel model;
   const double w = Number(node, "image_width");

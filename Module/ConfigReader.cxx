@@ -465,39 +465,43 @@ void CheckTree(const YAML::Node& node, std::size_t& values, const std::string& w
 
 void CheckKeys(const Node& node, std::initializer_list<const char*> known)
 {
+  CheckKeys(node, std::vector<std::string>(known.begin(), known.end()));
+}
+
+void CheckKeys(const Node& node, const std::vector<std::string>& known)
+{
   if (!node.isMap())
   {
     return;
   }
   for (const std::string& key : node.keys())
   {
-    if (std::find_if(known.begin(), known.end(), [&](const char* k) { return key == k; }) !=
-      known.end())
+    if (std::find(known.begin(), known.end(), key) != known.end())
     {
       continue;
     }
     std::string message = "unknown key '" + key + "'";
-    const char* nearest = nullptr;
+    const std::string* nearest = nullptr;
     std::size_t best = std::max<std::size_t>(2, key.size() / 3) + 1;
-    for (const char* k : known)
+    for (const std::string& k : known)
     {
       const std::size_t d = EditDistance(key, k);
       if (d < best)
       {
         best = d;
-        nearest = k;
+        nearest = &k;
       }
     }
     if (nearest)
     {
-      message += std::string(" (did you mean '") + nearest + "'?)";
+      message += " (did you mean '" + *nearest + "'?)";
     }
     else
     {
       message += " (known keys:";
-      for (const char* k : known)
+      for (const std::string& k : known)
       {
-        message += std::string(" ") + k;
+        message += " " + k;
       }
       message += ")";
     }

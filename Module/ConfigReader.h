@@ -88,6 +88,7 @@ bool Flag(const Node& parent, const std::string& key, bool fallback);
 /// Throws when the map `node` has a key not in `known`: "unknown key 'objetcs' (did you mean
 /// 'objects'?)" (the nearest known key within a few edits is suggested).
 void CheckKeys(const Node& node, std::initializer_list<const char*> known);
+void CheckKeys(const Node& node, const std::vector<std::string>& known);
 
 /// The largest YAML/JSON file read (16 MiB) and the deepest nesting of maps and sequences (64):
 /// the parser recurses once per level, and a file nested thousands deep would overflow its stack.

@@ -288,6 +288,62 @@ TEST(CalibrationIO, ReadsRosCameraInfoForTheLens)
   EXPECT_NE(error.find("distortion_coefficients"), std::string::npos) << error;
 }
 
+// Every key is checked: a misspelt one is an error that names it and the nearest known key (a
+// misspelt optional key would otherwise be a silently used default). The other keys of the files
+// ROS and OpenCV's calibration samples write are read past.
+TEST(CalibrationIO, UnknownKeysAreErrorsWithSuggestions)
+{
+  const std::string lens = "image_width: 640\nimage_height: 480\n"
+                           "camera_matrix: [500, 0, 319.5, 0, 500, 239.5, 0, 0, 1]\n";
+  const std::string mirror = "mirror: { center: [0, 0, 0.3], radius: 0.1 }\n";
+  struct Case
+  {
+    std::string text;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+    { lens + mirror + "distortion_coeficients: [0.1, 0, 0, 0, 0]\n",
+      "unknown key 'distortion_coeficients' (did you mean 'distortion_coefficients'?)" },
+    { lens + mirror + "world_to_camer: [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]\n",
+      "(did you mean 'world_to_camera'?)" },
+    { lens + "mirror: { center: [0, 0, 0.3], radius: 0.1, radus: 0.2 }\n",
+      "mirror type 'sphere': unknown key 'radus' (did you mean 'radius'?)" },
+    { lens +
+        "mirror: { type: hyperboloid, a: 0.02, b: 0.03, radius: 0.1,\n"
+        "  mirror_to_camera: [1,0,0,0, 0,1,0,0, 0,0,1,0.2, 0,0,0,1] }\n",
+      "mirror type 'hyperboloid': unknown key 'radius'" },
+    { lens + mirror + "fisheye_model: 1\n", "fisheye" },
+  };
+  for (const Case& c : cases)
+  {
+    CameraModel m;
+    std::string error;
+    EXPECT_FALSE(ParseCalibration(c.text, m, error)) << c.text;
+    EXPECT_NE(error.find(c.expected), std::string::npos)
+      << "error '" << error << "' lacks '" << c.expected << "'";
+  }
+
+  // As OpenCV's camera_calibration sample writes its output, with the mirror added.
+  cv::FileStorage out(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  out << "calibration_time"
+      << "Tue 24 Nov 2026"
+      << "nr_of_frames" << 25 << "image_width" << 640 << "image_height" << 480;
+  out << "board_width" << 9 << "board_height" << 6 << "square_size" << 0.025;
+  out << "fix_aspect_ratio" << 1.0 << "flags" << 2 << "fisheye_model" << 0;
+  out << "camera_matrix" << (cv::Mat_<double>(3, 3) << 500, 0, 319.5, 0, 500, 239.5, 0, 0, 1);
+  out << "distortion_coefficients" << (cv::Mat_<double>(5, 1) << -0.2, 0.05, 0, 0, 0);
+  out << "avg_reprojection_error" << 0.31;
+  out << "per_view_reprojection_errors" << cv::Mat(cv::Mat_<float>(25, 1, 0.3f));
+  out << "extrinsic_parameters" << cv::Mat(cv::Mat_<double>(25, 6, 0.1));
+  const std::string text =
+    out.releaseAndGetString() + "mirror: { type: sphere, center: [0, 0, 0.3], radius: 0.1 }\n";
+  CameraModel m;
+  std::string error;
+  ASSERT_TRUE(ParseCalibration(text, m, error)) << error << "\n" << text;
+  EXPECT_DOUBLE_EQ(m.distortion.k1, -0.2);
+  EXPECT_DOUBLE_EQ(Sphere(m.mirror).radius, 0.1);
+}
+
 TEST(CalibrationIO, SavesOnlyFormatsItReads)
 {
   std::string error;
