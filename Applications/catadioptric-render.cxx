@@ -16,6 +16,7 @@
 
 #include "CommandLine.h"
 #include "FileOutput.h"
+#include "SceneDescription.h"
 #include "VideoIO.h"
 #include "vtkPointData.h"
 #include "vtkTypeInt64Array.h"
@@ -381,7 +382,12 @@ int main(int argc, char* argv[])
     "Sequences (a scene with a trajectory, a video background, keyframes or 'sequence'): OUT as "
     "a pattern (out/frame_%05d.png) writes every frame as a numbered image, OUT ending in .mp4 "
     "or .avi writes a video; OUT a plain image name writes the first frame of the range. A "
-    "progress line on standard error and a per-stage summary follow.\n\nExit status: 0 "
+    "progress line on standard error and a per-stage summary follow.\n\nFiles: a relative name "
+    "in a scene is looked for in the scene's folder, then in each folder of CATAR_DATA_PATH "
+    "(':' between them), then in the installed data (" +
+    catar::InstalledDataDir() +
+    ": calibration/, scenes/, meshes/); SCENE itself, when it is not found where named, too."
+    "\n\nExit status: 0 "
     "success, 1 the scene or an output failed, 2 usage error.");
   app.add_option("SCENE", scene, "scene file (YAML or JSON); without it, the built-in demo");
   app.add_option("-o,--output", outName,
@@ -496,6 +502,9 @@ int main(int argc, char* argv[])
   onProgress->SetCallback(OnProgress);
   onProgress->SetClientData(&workProgress);
   renderer->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  // A scene that is not where it was named is looked for on the data search path
+  // (CATAR_DATA_PATH, then the installed data): `catadioptric-render scenes/two-objects.yaml`.
+  scene = scene.empty() ? scene : catar::FindDataFile("", scene);
   renderer->SetSceneFileName(scene.empty() ? nullptr : scene.c_str());
   renderer->SetRemeshTargetArea(targetArea);
   renderer->SetRemeshPixelTolerance(pixelTolerance);

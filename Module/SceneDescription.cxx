@@ -7,8 +7,12 @@
 
 #include <Eigen/Geometry>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -16,13 +20,19 @@ namespace catar
 {
 namespace
 {
+bool Exists(const std::string& path)
+{
+  return !path.empty() && std::ifstream(path).good();
+}
+
+std::string Join(const std::string& dir, const std::string& path)
+{
+  return dir.empty() ? path : dir + "/" + path;
+}
+
 std::string Resolve(const std::string& baseDir, const std::string& path)
 {
-  if (path.empty() || path[0] == '/' || baseDir.empty())
-  {
-    return path;
-  }
-  return baseDir + "/" + path;
+  return FindDataFile(baseDir, path);
 }
 
 std::string DirName(const std::string& path)
@@ -927,4 +937,65 @@ SceneDescription DemoScene()
   }
   return scene;
 }
+
+std::vector<std::string> DataSearchPath()
+{
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("CATAR_DATA_PATH"))
+  {
+    std::stringstream list(env);
+    for (std::string dir; std::getline(list, dir, ':');)
+    {
+      if (!dir.empty())
+      {
+        dirs.push_back(dir);
+      }
+    }
+  }
+  dirs.push_back(InstalledDataDir());
+  return dirs;
+}
+
+std::string InstalledDataDir()
+{
+  // Relative to the program or library that holds this code, so that an installed tree that
+  // moved (or was installed with --prefix elsewhere) finds its own data; else where the build
+  // said it would be installed.
+  Dl_info info;
+  if (dladdr(reinterpret_cast<void*>(&InstalledDataDir), &info) && info.dli_fname)
+  {
+    const std::string dir = DirName(info.dli_fname);
+    for (const char* relative : { CATAR_DATA_FROM_BINDIR, CATAR_DATA_FROM_LIBDIR })
+    {
+      const std::string candidate = dir + "/" + relative;
+      if (Exists(candidate + "/calibration/demo-camera.yaml"))
+      {
+        return candidate;
+      }
+    }
+  }
+  return CATAR_INSTALLED_DATA_DIR;
+}
+
+std::string FindDataFile(const std::string& baseDir, const std::string& path)
+{
+  if (path.empty() || path[0] == '/')
+  {
+    return path;
+  }
+  const std::string local = Join(baseDir, path);
+  if (Exists(local))
+  {
+    return local;
+  }
+  for (const std::string& dir : DataSearchPath())
+  {
+    if (Exists(Join(dir, path)))
+    {
+      return Join(dir, path);
+    }
+  }
+  return local;
+}
+
 } // namespace catar

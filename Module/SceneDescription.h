@@ -201,6 +201,17 @@ struct SceneDescription
   bool IsSequence() const;
 };
 
+/// The folders a relative file name in a scene is looked for in, after the scene file's own
+/// folder: each folder of the environment variable CATAR_DATA_PATH (separated by ':'), then the
+/// installed data (<prefix>/share/catadioptricar: calibration/, scenes/, meshes/).
+std::vector<std::string> DataSearchPath();
+/// The installed data folder (where `cmake --install` puts Data/).
+std::string InstalledDataDir();
+/// Where a file named in a scene is: an absolute name as it is; a relative one in `baseDir`
+/// (the scene's folder), else in the first folder of DataSearchPath() that has it. When none
+/// has it, `baseDir`/`path` (whose reader then says it is missing).
+std::string FindDataFile(const std::string& baseDir, const std::string& path);
+
 /// Reads a scene file. Returns false and says why in `error` on failure.
 bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error);
 /// Reads a scene from text; relative paths resolve against `baseDir`.

@@ -307,12 +307,14 @@ TEST(DemoScene, ObjectsLandWhereTheCameraProjectsThem)
 TEST(TexturedMesh, ObjTextureCoordinatesAndImage)
 {
   const std::string scene = std::string(CATAR_SOURCE_DIR) + "/Data/scenes/spot-textured.yaml";
-  const std::string obj =
-    std::string(CATAR_SOURCE_DIR) + "/../shared/data/spot/spot_triangulated.obj";
+  const std::string shared = std::string(CATAR_SOURCE_DIR) + "/../shared/data";
+  const std::string obj = shared + "/spot/spot_triangulated.obj";
   if (!vtksys::SystemTools::FileExists(obj))
   {
     GTEST_SKIP() << "shared data absent: " << obj;
   }
+  // The scene names the mesh and its texture by their place in the data folder.
+  vtksys::SystemTools::PutEnv("CATAR_DATA_PATH=" + shared);
   vtkNew<vtkCatadioptricSceneRenderer> textured;
   textured->SetSceneFileName(scene.c_str());
   ASSERT_TRUE(textured->Render()) << textured->GetLastError();
@@ -334,6 +336,7 @@ TEST(TexturedMesh, ObjTextureCoordinatesAndImage)
   vtkNew<vtkCatadioptricSceneRenderer> plain;
   plain->SetSceneFileName(plainPath.c_str());
   ASSERT_TRUE(plain->Render()) << plain->GetLastError();
+  vtksys::SystemTools::UnPutEnv("CATAR_DATA_PATH");
   vtkImageData* a = textured->GetOutput();
   vtkImageData* b = plain->GetOutput();
   const vtkIdType n = a->GetNumberOfPoints();

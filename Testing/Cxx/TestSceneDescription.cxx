@@ -5,8 +5,11 @@
 #include "TestCameras.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 using namespace catar;
@@ -241,6 +244,46 @@ TEST(SceneDescription, CalibrationFileRelativeToTheScene)
   EXPECT_EQ(s.camera.intrinsics.width, 64);
   std::remove(calib.c_str());
   std::remove(scenePath.c_str());
+}
+
+// The data search path: a relative name is looked for in the scene's folder, then in each folder
+// of CATAR_DATA_PATH in order, then in the installed data; the first that has it wins.
+TEST(SceneDescription, DataSearchPathOrder)
+{
+  const std::string root = ::testing::TempDir() + "/catar_data_path";
+  for (const char* sub : { "", "/scene", "/first", "/first/meshes", "/second", "/second/meshes" })
+  {
+    const std::string dir = root + sub;
+    ASSERT_TRUE(mkdir(dir.c_str(), 0755) == 0 || errno == EEXIST) << dir;
+  }
+  std::ofstream(root + "/second/meshes/both.ply") << "second\n";
+  std::ofstream(root + "/first/meshes/both.ply") << "first\n";
+  std::ofstream(root + "/second/meshes/only-second.ply") << "second\n";
+  std::ofstream(root + "/scene/meshes.ply") << "scene\n";
+  const std::string scene = root + "/scene";
+  ASSERT_EQ(setenv("CATAR_DATA_PATH", (root + "/first::" + root + "/second").c_str(), 1), 0);
+  EXPECT_EQ(FindDataFile(scene, "meshes/both.ply"), root + "/first/meshes/both.ply");
+  EXPECT_EQ(FindDataFile(scene, "meshes/only-second.ply"), root + "/second/meshes/only-second.ply");
+  EXPECT_EQ(FindDataFile(scene, "meshes.ply"), scene + "/meshes.ply");
+  // Absent everywhere: the scene's folder (whose reader then names the missing file); absolute
+  // names are kept.
+  EXPECT_EQ(FindDataFile(scene, "meshes/none.ply"), scene + "/meshes/none.ply");
+  EXPECT_EQ(FindDataFile(scene, "/abs/none.ply"), "/abs/none.ply");
+  const std::vector<std::string> path = DataSearchPath();
+  ASSERT_EQ(path.size(), 3u); // the empty entry of '::' is skipped
+  EXPECT_EQ(path[0], root + "/first");
+  EXPECT_EQ(path[1], root + "/second");
+  EXPECT_EQ(path[2], InstalledDataDir());
+  // A scene's mesh through the path.
+  std::ofstream(scene + "/s.yaml")
+    << kCamera << "objects:\n  - { type: mesh, file: meshes/only-second.ply }\n";
+  SceneDescription s;
+  std::string error;
+  ASSERT_TRUE(LoadScene(scene + "/s.yaml", s, error)) << error;
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].file, root + "/second/meshes/only-second.ply");
+  unsetenv("CATAR_DATA_PATH");
+  EXPECT_EQ(DataSearchPath().size(), 1u);
 }
 
 TEST(SceneDescription, LightingAndMaterials)

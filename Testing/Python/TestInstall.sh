@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the build tree into a temporary prefix and checks that the installed package imports
-# from /usr/bin/python3, the installed tool runs, and the installed plugin loads in pvpython.
+# from /usr/bin/python3, the installed tool runs and finds the installed data, a downstream C++
+# project builds with find_package(CatadioptricAR) and runs, and the installed plugin loads in
+# pvpython.
 set -euo pipefail
 build="$1"
 python="$2"
@@ -30,6 +32,25 @@ assert car.vtkCatadioptricCamera().IsValid()
 print('imported through the .pth file:', car.__file__)
 "
 "$prefix/bin/catadioptric-render" --help > /dev/null
+# The installed data, and the CLI finding an installed scene by its data-path name from an
+# empty folder (the scene's camera is found beside it, relative to the scene).
+data="$prefix/share/catadioptricar"
+test -f "$data/calibration/demo-camera.yaml"
+test -f "$data/meshes/trefoil-knot.ply"
+test -f "$data/scenes/two-objects.yaml"
+mkdir "$prefix/empty"
+(cd "$prefix/empty" && "$prefix/bin/catadioptric-render" --quiet scenes/two-objects.yaml \
+  -o two-objects.png && test -s two-objects.png)
+# find_package(CatadioptricAR): a downstream C++ program built against the installed tree only
+# (its scene names the installed camera and sample mesh by their data-path names).
+source_dir="$(cd "$(dirname "$0")/../.." && pwd)"
+cmake -S "$source_dir/Testing/Downstream" -B "$prefix/downstream" \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release > "$prefix/downstream.log" ||
+  { cat "$prefix/downstream.log"; exit 1; }
+cmake --build "$prefix/downstream" >> "$prefix/downstream.log" ||
+  { cat "$prefix/downstream.log"; exit 1; }
+"$prefix/downstream/downstream" "$prefix/empty"
+test -s "$prefix/empty/downstream.png"
 # The licence and citation file.
 test -f "$prefix/share/doc/CatadioptricAR/LICENSE"
 test -f "$prefix/share/doc/CatadioptricAR/CITATION.cff"
