@@ -10,6 +10,7 @@
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricSceneRenderer.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkSMPTools.h"
@@ -24,9 +25,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -76,6 +79,47 @@ std::string JsonNumber(double v)
   return buffer;
 }
 
+bool IsNpy(const std::string& name)
+{
+  return name.size() >= 4 && name.compare(name.size() - 4, 4, ".npy") == 0;
+}
+
+// --depth from the output's PathLength array (VTK row order: turned top first).
+bool WriteDepth(vtkImageData* image, const std::string& depthName)
+{
+  if (depthName.empty())
+  {
+    return true;
+  }
+  auto* depth = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("PathLength"));
+  int dims[3];
+  image->GetDimensions(dims);
+  const long long w = dims[0], h = dims[1];
+  if (!depth || depth->GetNumberOfValues() != w * h)
+  {
+    std::fprintf(stderr, "%s: no path lengths in the output\n", kProgram);
+    return false;
+  }
+  std::vector<float> top(static_cast<std::size_t>(w * h));
+  for (long long y = 0; y < h; ++y)
+  {
+    const float* row = depth->GetPointer((h - 1 - y) * w);
+    std::copy(row, row + w, top.begin() + y * w);
+  }
+  std::string error;
+  if (!catar::WriteFloatImageFile(
+        depthName, static_cast<int>(w), static_cast<int>(h), top.data(), error))
+  {
+    std::fprintf(stderr, "%s: --depth %s\n", kProgram, error.c_str());
+    return false;
+  }
+  if (!Quiet && !Json)
+  {
+    std::printf("wrote %s\n", depthName.c_str());
+  }
+  return true;
+}
+
 // --mask and --ids from the output's VisibleTriangle array (VTK row order: turned top first).
 bool WriteMaskAndIds(vtkImageData* image, const std::string& maskName, const std::string& idsName)
 {
@@ -122,7 +166,24 @@ bool WriteMaskAndIds(vtkImageData* image, const std::string& maskName, const std
   }
   if (!idsName.empty())
   {
-    if (!catar::WriteNpyInt64(idsName, h, w, top.data(), error))
+    // An image: 16-bit R = mesh + 1 (0: none), G and B = the cell's low and high 16 bits.
+    std::vector<std::uint16_t> rgb;
+    if (!IsNpy(idsName))
+    {
+      rgb.resize(3 * top.size(), 0);
+      for (std::size_t i = 0; i < top.size(); ++i)
+      {
+        if (top[i] >= 0)
+        {
+          rgb[3 * i] = static_cast<std::uint16_t>((top[i] >> 32) + 1);
+          rgb[3 * i + 1] = static_cast<std::uint16_t>(top[i] & 0xFFFF);
+          rgb[3 * i + 2] = static_cast<std::uint16_t>((top[i] >> 16) & 0xFFFF);
+        }
+      }
+    }
+    if (IsNpy(idsName) ? !catar::WriteNpyInt64(idsName, h, w, top.data(), error)
+                       : !catar::WriteImage16File(
+                           idsName, static_cast<int>(w), static_cast<int>(h), 3, rgb.data(), error))
     {
       std::fprintf(stderr, "%s: --ids %s\n", kProgram, error.c_str());
       return false;
@@ -373,7 +434,7 @@ int main(int argc, char* argv[])
   int antialiasSamples = 0;
   bool antialias = false, printDemo = false, alpha = false, reference = false;
   int referenceSamples = 1;
-  std::string maskName, idsName;
+  std::string maskName, idsName, depthName;
 
   CLI::App app("Renders SCENE (YAML or JSON, README \"Scene files\") to OUT and prints the time "
                "of each stage. Without SCENE it renders the built-in demo scene.",
@@ -437,8 +498,12 @@ int main(int argc, char* argv[])
   app.add_option("--mask", maskName,
     "also write the objects' mask: 255 where a triangle is seen, 0 elsewhere (an image)");
   app.add_option("--ids", idsName,
-    "also write the visible triangle per pixel as a NumPy .npy array of int64, rows top first: "
-    "mesh * 2^32 + cell, -1 for none");
+    "also write the visible triangle per pixel: a NumPy .npy array of int64, rows top first, "
+    "mesh * 2^32 + cell, -1 for none; or a 16-bit RGB .png/.tif, R = mesh + 1 (0: none), "
+    "G + 65536 B = cell");
+  app.add_option("--depth", depthName,
+    "also write the path length per pixel (from the mirror to the surface seen, scene units; "
+    "NaN where none) as a 32-bit float .exr or .tif");
   auto* referenceFlag = app.add_flag("--reference", reference,
     "render with the exact reference ray tracer instead of the fast path (README \"The "
     "reference ray tracer\"; overrides the scene's 'renderer')");
@@ -483,11 +548,28 @@ int main(int argc, char* argv[])
       stderr, "%s: --mask %s (run with --help for usage)\n", kProgram, formatError.c_str());
     return 2;
   }
-  if (!idsName.empty() &&
-    (idsName.size() < 4 || idsName.compare(idsName.size() - 4, 4, ".npy") != 0))
+  const auto extensionIn = [](const std::string& name, std::initializer_list<const char*> list) {
+    for (const char* e : list)
+    {
+      const std::size_t n = std::strlen(e);
+      if (name.size() > n && name.compare(name.size() - n, n, e) == 0)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  if (!idsName.empty() && !extensionIn(idsName, { ".npy", ".png", ".tif", ".tiff" }))
   {
-    std::fprintf(
-      stderr, "%s: --ids writes a NumPy .npy file (run with --help for usage)\n", kProgram);
+    std::fprintf(stderr,
+      "%s: --ids writes a NumPy .npy file or a 16-bit .png or .tif (run with --help for usage)\n",
+      kProgram);
+    return 2;
+  }
+  if (!depthName.empty() && !extensionIn(depthName, { ".exr", ".tif", ".tiff" }))
+  {
+    std::fprintf(stderr,
+      "%s: --depth writes a 32-bit float .exr or .tif (run with --help for usage)\n", kProgram);
     return 2;
   }
   // Parallel loops: STDThread unless the environment chose a backend.
@@ -514,6 +596,7 @@ int main(int argc, char* argv[])
   renderer->SetTransparentBackground(alpha);
   renderer->SetReferenceSamples(reference ? referenceSamples : 0);
   renderer->SetOutputVisibleTriangle(!maskName.empty() || !idsName.empty());
+  renderer->SetOutputPathLength(!depthName.empty());
   if (!renderer->LoadScene())
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
@@ -540,10 +623,11 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "catadioptric-render: -o %s\n", patternError.c_str());
     return 2;
   }
-  if (sequence && (!maskName.empty() || !idsName.empty()))
+  if (sequence && (!maskName.empty() || !idsName.empty() || !depthName.empty()))
   {
     std::fprintf(stderr,
-      "%s: --mask and --ids go with one image, not a sequence (run with --help for usage)\n",
+      "%s: --mask, --ids and --depth go with one image, not a sequence (run with --help for "
+      "usage)\n",
       kProgram);
     return 2;
   }
@@ -583,7 +667,8 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
     return 1;
   }
-  if (!WriteMaskAndIds(renderer->GetOutput(), maskName, idsName))
+  if (!WriteMaskAndIds(renderer->GetOutput(), maskName, idsName) ||
+    !WriteDepth(renderer->GetOutput(), depthName))
   {
     return 1;
   }
@@ -596,12 +681,14 @@ int main(int argc, char* argv[])
       stagesJson += std::string(s ? ", " : "") + Quoted(renderer->GetStageName(s)) + ": " +
         JsonNumber(1e3 * renderer->GetStageTime(s));
     }
-    std::printf("{\"scene\": %s, \"output\": %s, \"mask\": %s, \"ids\": %s, \"width\": %d, "
+    std::printf("{\"scene\": %s, \"output\": %s, \"mask\": %s, \"ids\": %s, \"depth\": %s, "
+                "\"width\": %d, "
                 "\"height\": %d, \"triangles\": %lld, \"backend\": %s, \"threads\": %d, "
                 "\"stages_ms\": {%s}, \"frame_ms\": %s}\n",
       scene.empty() ? "null" : Quoted(scene).c_str(), Quoted(outName).c_str(),
       maskName.empty() ? "null" : Quoted(maskName).c_str(),
-      idsName.empty() ? "null" : Quoted(idsName).c_str(), cam->GetImageWidth(),
+      idsName.empty() ? "null" : Quoted(idsName).c_str(),
+      depthName.empty() ? "null" : Quoted(depthName).c_str(), cam->GetImageWidth(),
       cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
       Quoted(vtkSMPTools::GetBackend()).c_str(), vtkSMPTools::GetEstimatedNumberOfThreads(),
       stagesJson.c_str(), JsonNumber(1e3 * renderer->GetFrameTime()).c_str());

@@ -434,6 +434,7 @@ bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView
   const std::int64_t sy0 = s.stepY[0], sy1 = s.stepY[1], sy2 = s.stepY[2];
   const Plane cz = s.depth;
   const bool writeDepth = kDepth && depthView->write;
+  const bool testDepth = kDepth && depthView->test;
 
   // One pixel centre in the box (most triangles of dense meshes that draw anything): the walk's
   // work for it, without the loops (rowIndex = k = 0, the same arithmetic).
@@ -447,7 +448,7 @@ bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView
     {
       const float z = static_cast<float>((cz.origin + cz.dy * 0.0) + cz.dx * 0.0);
       float* zq = depthView->at(xMin, s.yMin);
-      if (!(z < *zq))
+      if (testDepth && !(z < *zq))
       {
         return true;
       }
@@ -493,7 +494,7 @@ bool Scan(const ImageView& img, const DepthView* depthView, const IdView* idView
       {
         const float z = static_cast<float>(zRow + cz.dx * k);
         float* zq = zp + (x - xMin);
-        if (!(z < *zq))
+        if (testDepth && !(z < *zq))
         {
           continue;
         }

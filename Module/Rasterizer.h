@@ -64,7 +64,9 @@ struct ImageView
 /// Optional depth buffer (not owned), one float per pixel, addressed like ImageView with rowStride
 /// counted in floats (may be negative). It must be at least as large as the target image.
 /// write = false makes the buffer read-only: pixels are still depth-tested but the stored depth
-/// is left as it was (how semi-transparent surfaces are drawn after the opaque ones).
+/// is left as it was (how semi-transparent surfaces are drawn after the opaque ones). test = false
+/// draws every covered pixel and writes its depth (the depth of the last triangle drawn, as the
+/// ids: painter order with a per-pixel path length kept beside it).
 struct DepthView
 {
   float* data = nullptr;        ///< address of the depth of pixel (0, 0)
@@ -72,6 +74,7 @@ struct DepthView
   int height = 0;               ///< number of rows
   std::ptrdiff_t rowStride = 0; ///< floats from row y to row y+1 (may be negative)
   bool write = true;            ///< store the depth of every drawn pixel (false: test only)
+  bool test = true;             ///< draw only where nearer than the stored depth
 
   /// Address of the depth of pixel (x, y); no bounds check.
   float* at(int x, int y) const { return data + y * rowStride + static_cast<std::ptrdiff_t>(x); }

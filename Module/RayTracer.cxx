@@ -300,7 +300,7 @@ void RayTracer::ShadeHit(const Vec3& origin, const Vec3& direction, const RaySce
 }
 
 void RayTracer::RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_t idRowStride,
-  int y0, int y1, RayTraceStatistics* statistics) const
+  int y0, int y1, RayTraceStatistics* statistics, float* pathLengths) const
 {
   if (!this->HasScene || this->Width <= 0 || target.data == nullptr ||
     target.width != this->Width || target.height != this->Height)
@@ -323,6 +323,7 @@ void RayTracer::RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_
       const double frame[3] = { px[0] / 255.0, px[1] / 255.0, px[2] / 255.0 };
       double sum[3] = { 0.0, 0.0, 0.0 };
       RasterId id = -1;
+      float pathLength = std::numeric_limits<float>::quiet_NaN();
       bool any = false;
       for (int k = 0; k < perPixel; ++k)
       {
@@ -355,6 +356,8 @@ void RayTracer::RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_
                 const RasterId local_id =
                   mesh.triangleIds.empty() ? g.local : mesh.triangleIds[g.local];
                 id = (static_cast<RasterId>(g.mesh) << 32) + local_id;
+                // The rays' directions are unit vectors: t is the distance.
+                pathLength = static_cast<float>(hit.t * direction.norm());
               }
             }
           }
@@ -374,6 +377,10 @@ void RayTracer::RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_
       if (ids)
       {
         ids[y * idRowStride + x] = id;
+      }
+      if (pathLengths)
+      {
+        pathLengths[y * idRowStride + x] = pathLength;
       }
     }
   }

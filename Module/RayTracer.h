@@ -94,9 +94,11 @@ public:
   /// over the frame (source over, the mesh's opacity); samples are averaged. `ids` (optional,
   /// one int64 per pixel, addressed like target with idRowStride counted in values) receives
   /// the visible triangle of the pixel's centre-most sample: meshIndex * 2^32 + triangle id, or
-  /// -1. Thread-safe for disjoint row ranges. `statistics` (optional) is added to.
+  /// -1. `pathLengths` (optional, one float per pixel, addressed like ids) receives that
+  /// sample's distance from the mirror to the surface it meets, or NaN. Thread-safe for disjoint
+  /// row ranges. `statistics` (optional) is added to.
   void RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_t idRowStride, int y0,
-    int y1, RayTraceStatistics* statistics = nullptr) const;
+    int y1, RayTraceStatistics* statistics = nullptr, float* pathLengths = nullptr) const;
 
   const std::string& GetError() const { return this->Error; }
   int GetWidth() const { return this->Width; }

@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <initializer_list>
 
 namespace catar
 {
@@ -535,6 +536,75 @@ bool WriteImageFile(const std::string& file, const Frame& frame, std::string& er
   }
   return WriteWholeFile(
     file, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()), error);
+}
+
+namespace
+{
+// Encodes `image` in the format of the extension `ext` (one of `allowed`) and writes it.
+bool WriteDataImage(const std::string& file, const cv::Mat& image,
+  std::initializer_list<const char*> allowed, const char* what, std::string& error)
+{
+  const std::string ext = Extension(file);
+  std::string names;
+  bool known = false;
+  for (const char* e : allowed)
+  {
+    names += std::string(names.empty() ? "" : ", ") + e;
+    known = known || ext == e;
+  }
+  if (!known)
+  {
+    error = "'" + file + "': " + what + " are written as " + names;
+    return false;
+  }
+  std::vector<uchar> bytes;
+  try
+  {
+    if (!cv::haveImageWriter(file) || !cv::imencode(ext, image, bytes) || bytes.empty())
+    {
+      error = "'" + file + "': this build cannot write " + what + " as " + ext;
+      return false;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "'" + file + "': " + e.msg;
+    return false;
+  }
+  return WriteWholeFile(
+    file, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()), error);
+}
+} // namespace
+
+bool WriteFloatImageFile(
+  const std::string& file, int width, int height, const float* values, std::string& error)
+{
+  if (width <= 0 || height <= 0 || !values)
+  {
+    error = "'" + file + "': no image to write";
+    return false;
+  }
+  const cv::Mat image(height, width, CV_32FC1, const_cast<float*>(values));
+  return WriteDataImage(
+    file, image, { ".exr", ".tif", ".tiff" }, "float images (32-bit, one channel)", error);
+}
+
+bool WriteImage16File(const std::string& file, int width, int height, int channels,
+  const std::uint16_t* values, std::string& error)
+{
+  if (width <= 0 || height <= 0 || !values || (channels != 1 && channels != 3))
+  {
+    error = "'" + file + "': no image to write";
+    return false;
+  }
+  cv::Mat image(height, width, CV_16UC(channels), const_cast<std::uint16_t*>(values));
+  cv::Mat bgr;
+  if (channels == 3)
+  {
+    cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR); // OpenCV writes BGR as the file's RGB
+  }
+  return WriteDataImage(
+    file, channels == 3 ? bgr : image, { ".png", ".tif", ".tiff" }, "16-bit images", error);
 }
 
 void FrameWriter::Close()

@@ -52,8 +52,6 @@ private:
   std::unique_ptr<Internals> Internal;
 };
 
-/// Frames written as numbered image files (a pattern; the format from the extension, as
-/// cv::imwrite) or a video (.mp4, .avi).
 /// Whether name ends in the extension of an image format this build writes (.png, .jpg, .jpeg,
 /// .tif, .tiff, .bmp, .webp; .exr where OpenCV's OpenEXR writer is enabled) or has none (PNG:
 /// a device such as /dev/stdout); false with a sentence in error naming them.
@@ -62,6 +60,19 @@ bool IsImageFileName(const std::string& name, std::string* error = nullptr);
 /// WebP keep alpha, the others get RGB. Encoded in memory, then written with every error checked
 /// (a full disk is reported). False with a sentence in error.
 bool WriteImageFile(const std::string& file, const Frame& frame, std::string& error);
+
+/// Data images (not for viewing): values kept exactly, one value per pixel, rows top first.
+/// A float image (a path length per pixel): .exr or .tif/.tiff, 32-bit float, one channel; NaN
+/// is kept. False with a sentence in error (another extension, or no writer for it).
+bool WriteFloatImageFile(
+  const std::string& file, int width, int height, const float* values, std::string& error);
+/// An image of 16-bit unsigned words, `channels` (1 or 3, in R, G, B order) per pixel: .png or
+/// .tif/.tiff. False with a sentence in error.
+bool WriteImage16File(const std::string& file, int width, int height, int channels,
+  const std::uint16_t* values, std::string& error);
+
+/// Frames written as numbered image files (a pattern; the format from the extension, as
+/// cv::imwrite) or a video (.mp4, .avi).
 
 class FrameWriter
 {

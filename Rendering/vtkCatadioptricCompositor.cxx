@@ -13,6 +13,7 @@
 #include "vtkCatadioptricTriangleBins.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerVectorKey.h"
@@ -26,6 +27,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -68,12 +70,13 @@ catar::IdView TopRowFirst(catar::RasterId* ids, int width, int height)
 // the background -- background(begin, end) for the pixels [begin, end) of the output, VTK row
 // order -- which saves a parallel loop of its own and draws onto rows still in the cache. depth
 // (width x height floats, top row first) and ids (the output array, VTK row order) may be null;
-// each band initialises its own rows of both. With a depth buffer the opaque triangles (first in
-// the bins' order) write depth and the others only test it.
+// each band initialises its own rows of both. With a depth test the opaque triangles (first in
+// the bins' order) write depth and the others only test it; without (depthTest false: painter
+// order with the depths kept for the PathLength output) every triangle writes its depth.
 template<typename Background>
 void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& bins,
   const std::vector<catar::TextureView>& textures, const Background& background, float* depth,
-  catar::RasterId* ids)
+  bool depthTest, catar::RasterId* ids)
 {
   const int width = view.width;
   const int height = view.height;
@@ -85,6 +88,7 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
     write.width = width;
     write.height = height;
     write.rowStride = w;
+    write.test = depthTest;
   }
   catar::DepthView test = write;
   test.write = false;
@@ -110,7 +114,7 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
     bins.ForEachTriangle(b, [&](std::uint32_t ref) {
       bins.Get(ref, t, info);
       catar::rasterizeSnappedTriangle(view, t, band,
-        depth ? (info.Opaque ? &write : &test) : nullptr,
+        depth ? (info.Opaque || !depthTest ? &write : &test) : nullptr,
         info.Texture >= 0 ? &textures[info.Texture] : nullptr, ids ? &idView : nullptr, info.Id);
     });
   });
@@ -152,6 +156,7 @@ int vtkCatadioptricCompositor::RequestData(
   const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
   const bool depthMode = this->Visibility == DEPTH_BUFFER;
   const bool wantIds = this->OutputVisibleTriangle;
+  const bool wantDepths = this->OutputPathLength;
   this->NumberOfDrawnTriangles = 0;
   this->NumberOfSkippedTriangles = 0;
   this->NumberOfEdgePixels = 0;
@@ -284,8 +289,8 @@ int vtkCatadioptricCompositor::RequestData(
                                "vtkCatadioptricProjection first.");
       return 0;
     }
-    // DEPTH_BUFFER: the per-vertex depth.
-    if (depthMode)
+    // DEPTH_BUFFER and OutputPathLength: the per-vertex depth.
+    if (depthMode || wantDepths)
     {
       in.PathLength = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::PathLength);
       if (!in.PathLength || in.PathLength->GetNumberOfComponents() != 1 ||
@@ -293,8 +298,8 @@ int vtkCatadioptricCompositor::RequestData(
       {
         vtkErrorMacro("Mesh " << m
                               << " has no PathLength point array (1 component, one value per "
-                                 "point), which Visibility DEPTH_BUFFER needs: run "
-                                 "vtkCatadioptricProjection first, or use PAINTER.");
+                                 "point), which Visibility DEPTH_BUFFER and OutputPathLength "
+                                 "need: run vtkCatadioptricProjection first.");
         return 0;
       }
     }
@@ -360,6 +365,7 @@ int vtkCatadioptricCompositor::RequestData(
   options.Opacity = static_cast<float>(this->Opacity);
   options.MergeByDepth = nMeshes > 1;
   options.DepthBuffer = depthMode;
+  options.Depths = depthMode || wantDepths;
   options.Ids = wantIds || samples > 1; // edges are found on the ids
   options.Samples = samples;
   std::string binError;
@@ -401,7 +407,7 @@ int vtkCatadioptricCompositor::RequestData(
   // The depth buffer is scratch memory kept between executions (allocating and first touching
   // it every frame costs more than the depth test itself on some systems).
   float* depth = nullptr;
-  if (depthMode)
+  if (depthMode || wantDepths)
   {
     this->DepthBuffer.resize(static_cast<size_t>(nPixels));
     depth = this->DepthBuffer.data();
@@ -411,7 +417,7 @@ int vtkCatadioptricCompositor::RequestData(
     this->EdgeIds.resize(static_cast<size_t>(nPixels));
     ids = this->EdgeIds.data();
   }
-  DrawBands(view, *this->Bins, textures, background, depth, ids);
+  DrawBands(view, *this->Bins, textures, background, depth, depthMode, ids);
   if (samples > 1)
   {
     const double* color = this->BackgroundColor;
@@ -435,6 +441,26 @@ int vtkCatadioptricCompositor::RequestData(
   if (!idCopy.empty())
   {
     std::copy(idCopy.begin(), idCopy.end(), visibleTriangle->GetPointer(0));
+  }
+  if (wantDepths)
+  {
+    // The depth buffer's rows, top first, into VTK's row order; never drawn (infinite): NaN.
+    vtkNew<vtkFloatArray> pathLength;
+    pathLength->SetName(vtkCatadioptricArrayNames::PathLength);
+    pathLength->SetNumberOfTuples(nPixels);
+    float* to = pathLength->GetPointer(0);
+    vtkCatadioptricParallel::For(0, height, 64, [&](vtkIdType y0, vtkIdType y1) {
+      for (vtkIdType y = y0; y < y1; ++y)
+      {
+        const float* row = depth + y * width;
+        float* outRow = to + (height - 1 - y) * width;
+        for (int x = 0; x < width; ++x)
+        {
+          outRow[x] = std::isinf(row[x]) ? std::numeric_limits<float>::quiet_NaN() : row[x];
+        }
+      }
+    });
+    output->GetPointData()->AddArray(pathLength);
   }
   this->UpdateProgress(1.0);
   return 1;

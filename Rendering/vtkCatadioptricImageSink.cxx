@@ -105,6 +105,7 @@ void vtkCatadioptricImageSink::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImageSize: " << this->ImageSize[0] << " " << this->ImageSize[1] << "\n";
   os << indent << "RepeatTextures: " << (this->RepeatTextures ? "On" : "Off") << "\n";
   os << indent << "OutputVisibleTriangle: " << (this->OutputVisibleTriangle ? "On" : "Off") << "\n";
+  os << indent << "OutputPathLength: " << (this->OutputPathLength ? "On" : "Off") << "\n";
 }
 
 int vtkCatadioptricImageSink::CheckFrame(vtkImageData* frame, int width, int height)

@@ -6,10 +6,10 @@
  * image is BackgroundColor at ImageSize, or the camera's size), the meshes on port 1 (several)
  * and textures on port 2 (several: unsigned char images with 1, 3 or 4 components). The output is
  * an RGBA unsigned char image of the frame's extent, and with OutputVisibleTriangle a per-pixel
- * "VisibleTriangle" array. Meshes without the colour array ColorArrayName are drawn in Color;
- * every colour is multiplied by Opacity; texture coordinates beyond [0, 1] repeat or clamp
- * (RepeatTextures). One set of defaults for both: Color 0.8 grey, Opacity 1, "Colors", black
- * background, textures clamped, no VisibleTriangle.
+ * "VisibleTriangle" array, with OutputPathLength a per-pixel "PathLength" array. Meshes without the
+ * colour array ColorArrayName are drawn in Color; every colour is multiplied by Opacity; texture
+ * coordinates beyond [0, 1] repeat or clamp (RepeatTextures). One set of defaults for both: Color
+ * 0.8 grey, Opacity 1, "Colors", black background, textures clamped, no VisibleTriangle.
  *
  * Subclasses: vtkCatadioptricCompositor (the fast path) and vtkCatadioptricRayTracer (the exact
  * reference). They say how large the image is without a frame (ImageSizeWithoutFrame).
@@ -86,6 +86,16 @@ public:
   vtkBooleanMacro(OutputVisibleTriangle, bool);
   ///@}
 
+  ///@{
+  /// Add the point-data array "PathLength" (float, one value per pixel, VTK row order) to the
+  /// output: the length of the reflected ray from the mirror to the surface seen in the pixel
+  /// (the pixel's triangle in VisibleTriangle), in scene units; NaN where no triangle is drawn.
+  /// The "depth" of a catadioptric image: what a depth buffer holds. Default off.
+  vtkSetMacro(OutputPathLength, bool);
+  vtkGetMacro(OutputPathLength, bool);
+  vtkBooleanMacro(OutputPathLength, bool);
+  ///@}
+
 protected:
   vtkCatadioptricImageSink();
   ~vtkCatadioptricImageSink() override;
@@ -118,6 +128,7 @@ protected:
   int ImageSize[2] = { 0, 0 };
   bool RepeatTextures = false;
   bool OutputVisibleTriangle = false;
+  bool OutputPathLength = false;
 
 private:
   vtkCatadioptricImageSink(const vtkCatadioptricImageSink&) = delete;

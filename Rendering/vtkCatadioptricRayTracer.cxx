@@ -16,6 +16,7 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -481,6 +482,15 @@ int vtkCatadioptricRayTracer::RequestData(
     output->GetPointData()->AddArray(visible);
     idData = visible->GetPointer(0) + static_cast<std::ptrdiff_t>(width) * (height - 1);
   }
+  float* pathData = nullptr;
+  if (this->OutputPathLength)
+  {
+    vtkNew<vtkFloatArray> pathLength;
+    pathLength->SetName(vtkCatadioptricArrayNames::PathLength);
+    pathLength->SetNumberOfTuples(nPixels);
+    output->GetPointData()->AddArray(pathLength);
+    pathData = pathLength->GetPointer(0) + static_cast<std::ptrdiff_t>(width) * (height - 1);
+  }
   const catar::RayTracer& tracer = in.Tracer;
   constexpr int kBand = 16;
   const int bands = (height + kBand - 1) / kBand;
@@ -498,7 +508,7 @@ int vtkCatadioptricRayTracer::RequestData(
       {
         tracer.RenderRows(view, idData, -static_cast<std::ptrdiff_t>(width),
           static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand),
-          &statistics[static_cast<size_t>(band)]);
+          &statistics[static_cast<size_t>(band)], pathData);
       }
     });
     this->UpdateProgress(0.3 + 0.7 * (part + 1) / kParts);

@@ -173,7 +173,7 @@ bool vtkCatadioptricTriangleBins::Build(
   }
   this->Points.resize(static_cast<size_t>(nPoints));
   this->PointColours.resize(anyPointFloats ? static_cast<size_t>(nPoints) : 0);
-  this->PointDepths.resize(options.DepthBuffer ? static_cast<size_t>(nPoints) : 0);
+  this->PointDepths.resize(options.Depths ? static_cast<size_t>(nPoints) : 0);
   this->PointTCoords.resize(anyTexture ? static_cast<size_t>(nPoints) : 0);
   this->CellStates.resize(static_cast<size_t>(nCells));
   this->CellColours.resize(anyCellColours ? static_cast<size_t>(nCells) : 0);
@@ -331,7 +331,7 @@ void vtkCatadioptricTriangleBins::ReadPoints(const Chunk& chunk)
       points[i].X = Finite(colours[i].C) ? points[i].X : kBadPoint;
     }
   }
-  if (this->Opts.DepthBuffer)
+  if (this->Opts.Depths)
   {
     float* depths = this->PointDepths.data() + m.PointBase;
     WithValues(in.PathLength, [&](auto values, int nc) {

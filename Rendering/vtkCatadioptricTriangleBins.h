@@ -83,7 +83,8 @@ public:
     float Solid[4] = { 0.f, 0.f, 0.f, 1.f }; ///< RGBA of meshes without that array
     float Opacity = 1.f;                     ///< multiplies every alpha
     bool MergeByDepth = false; ///< one far-to-near order across meshes (stable: CentroidDepth)
-    bool DepthBuffer = false;  ///< per-vertex depths (PathLength); opaque triangles first
+    bool DepthBuffer = false;  ///< a depth test: opaque triangles first (needs Depths)
+    bool Depths = false;       ///< per-vertex depths (PathLength): DepthBuffer, or depth output
     bool Ids = false;          ///< per-triangle ids
     /// Samples per pixel side of anti-aliased edges (1: none, at most 4). Above 1 a triangle is
     /// kept when it covers one of the S x S sample points of a pixel (the centres of the pixel's
@@ -316,7 +317,7 @@ inline void vtkCatadioptricTriangleBins::Get(
     {
       std::copy(c, c + 4, t.rgba[k]);
     }
-    if (this->Opts.DepthBuffer)
+    if (this->Opts.Depths)
     {
       t.depth[k] = this->PointDepths[src.V[k]];
     }

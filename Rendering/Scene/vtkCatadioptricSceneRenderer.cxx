@@ -752,6 +752,8 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   }
   in.Compositor->SetOutputVisibleTriangle(this->OutputVisibleTriangle);
   in.Tracer->SetOutputVisibleTriangle(this->OutputVisibleTriangle);
+  in.Compositor->SetOutputPathLength(this->OutputPathLength);
+  in.Tracer->SetOutputPathLength(this->OutputPathLength);
   if (!in.ApplyFrame(0))
   {
     vtkErrorMacro(<< in.Error);

@@ -92,6 +92,16 @@ public:
   ///@}
 
   ///@{
+  /// OutputPathLength (default off): the output gets the "PathLength" array (per pixel, float:
+  /// the distance from the mirror to the surface seen, NaN for none; see
+  /// vtkCatadioptricImageSink), from the fast path or the reference renderer. Applied at the
+  /// next LoadScene().
+  vtkSetMacro(OutputPathLength, bool);
+  vtkGetMacro(OutputPathLength, bool);
+  vtkBooleanMacro(OutputPathLength, bool);
+  ///@}
+
+  ///@{
   /// Anti-aliased edges (vtkCatadioptricCompositor's Antialias) with Antialias x Antialias
   /// samples per edge pixel (2 to 4), overriding the scene's `antialias`; 0 (default) keeps the
   /// scene's. Applied when the scene is next read.
@@ -211,6 +221,7 @@ protected:
   bool TransparentBackground = false;
   int ReferenceSamples = 0;
   bool OutputVisibleTriangle = false;
+  bool OutputPathLength = false;
   char* MarkerBoardFileName = nullptr;
 
 private:

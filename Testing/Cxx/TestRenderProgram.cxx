@@ -3,10 +3,14 @@
 #include "TestPrograms.h"
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <string>
 #include <utility>
 
@@ -123,6 +127,59 @@ TEST(RenderProgram, AlphaMaskAndIds)
   // Sequences and the other extensions are refused.
   EXPECT_EQ(Render("--ids '" + dir + "/x.txt'").status, 2);
   EXPECT_EQ(Render("--mask '" + dir + "/x.xyz'").status, 2);
+}
+
+// --depth (32-bit float .tif and .exr: the same values, NaN exactly where no triangle is seen)
+// and --ids as a 16-bit RGB image (the same ids as the .npy array, decoded as the help says).
+TEST(RenderProgram, DepthAndIdImages)
+{
+  const std::string dir = ::testing::TempDir();
+  const std::string tif = dir + "/catar_depth.tif", exr = dir + "/catar_depth.exr",
+                    png = dir + "/catar_ids.png", npy = dir + "/catar_ids16.npy";
+  const auto run =
+    Render("-o '" + dir + "/catar_depth_frame.png' --depth '" + tif + "' --ids '" + png + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto second =
+    Render("-o '" + dir + "/catar_depth_frame.png' --depth '" + exr + "' --ids '" + npy + "'");
+  ASSERT_EQ(second.status, 0) << second.output;
+  const cv::Mat a = cv::imread(tif, cv::IMREAD_UNCHANGED);
+  const cv::Mat b = cv::imread(exr, cv::IMREAD_UNCHANGED);
+  const cv::Mat ids = cv::imread(png, cv::IMREAD_UNCHANGED); // B, G, R
+  ASSERT_EQ(a.type(), CV_32FC1);
+  ASSERT_EQ(ids.type(), CV_16UC3);
+  // The .npy: a header, then int64 values, rows top first.
+  std::ifstream in(npy, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t data = bytes.find('\n') + 1;
+  ASSERT_EQ(bytes.size() - data, 8u * a.total());
+  const auto* npyIds = reinterpret_cast<const long long*>(bytes.data() + data);
+  long seen = 0, bad = 0;
+  for (int y = 0; y < a.rows; ++y)
+  {
+    for (int x = 0; x < a.cols; ++x)
+    {
+      const long long id = npyIds[static_cast<std::size_t>(y) * a.cols + x];
+      const cv::Vec3w rgb = ids.at<cv::Vec3w>(y, x);
+      const long long fromPng = rgb[2] == 0 ? -1
+                                            : (static_cast<long long>(rgb[2] - 1) << 32) + rgb[1] +
+          (static_cast<long long>(rgb[0]) << 16);
+      const float d = a.at<float>(y, x);
+      bad += fromPng != id || std::isnan(d) != (id < 0) || !(std::isnan(d) || d > 0);
+      if (!b.empty())
+      {
+        const float e = b.at<float>(y, x);
+        bad += !(e == d || (std::isnan(e) && std::isnan(d)));
+      }
+      seen += id >= 0;
+    }
+  }
+  EXPECT_GT(seen, 1000);
+  EXPECT_EQ(bad, 0);
+  std::cout << "[ cli      ] " << seen << " pixels with a path length and an id"
+            << (b.empty() ? " (no EXR reader: .exr not compared)" : "") << "\n";
+  // Other extensions are usage errors.
+  EXPECT_EQ(Render("--depth '" + dir + "/x.png'").status, 2);
+  EXPECT_EQ(Render("--ids '" + dir + "/x.jpg'").status, 2);
 }
 
 // --json: one JSON object (read by Python's json), for one image and for a sequence; --quiet:
