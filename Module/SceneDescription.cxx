@@ -968,9 +968,14 @@ std::string InstalledDataDir()
     for (const char* relative : { CATAR_DATA_FROM_BINDIR, CATAR_DATA_FROM_LIBDIR })
     {
       const std::string candidate = dir + "/" + relative;
-      if (Exists(candidate + "/calibration/demo-camera.yaml"))
+      char* real = Exists(candidate + "/calibration/demo-camera.yaml")
+        ? realpath(candidate.c_str(), nullptr)
+        : nullptr;
+      if (real)
       {
-        return candidate;
+        const std::string found = real; // without the "bin/../" of the relative path
+        std::free(real);
+        return found;
       }
     }
   }
