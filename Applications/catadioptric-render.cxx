@@ -436,8 +436,9 @@ int main(int argc, char* argv[])
   int referenceSamples = 1;
   std::string maskName, idsName, depthName;
 
-  CLI::App app("Renders SCENE (YAML or JSON, README \"Scene files\") to OUT and prints the time "
-               "of each stage. Without SCENE it renders the built-in demo scene.",
+  CLI::App app(
+    "Renders SCENE (YAML or JSON, Documentation/file-formats.md) to OUT and prints the time "
+    "of each stage. Without SCENE it renders the built-in demo scene.",
     kProgram);
   app.footer(
     "Sequences (a scene with a trajectory, a video background, keyframes or 'sequence'): OUT as "
@@ -462,15 +463,17 @@ int main(int argc, char* argv[])
     ->check(CLI::Range(1e-6, 1000.0));
   app.add_option("--markers", markers,
     "estimate each frame's camera pose from this board's markers seen in the background "
-    "(README \"Markers\")");
+    "(Documentation/markers.md)");
   app
     .add_option("--adaptive", adaptive,
-      "split, every frame, the triangles whose edges bend more than P pixels (README \"Edges\"; "
+      "split, every frame, the triangles whose edges bend more than P pixels "
+      "(Documentation/edges-and-rasterisation.md; "
       "overrides the scene's)")
     ->type_name("P")
     ->check(CLI::Range(1e-9, 1e6));
   app.add_flag("--antialias", antialias,
-    "redraw the edge pixels from 4 x 4 samples each (README \"Rasterisation\"; overrides the "
+    "redraw the edge pixels from 4 x 4 samples each (Documentation/edges-and-rasterisation.md; "
+    "overrides the "
     "scene's)");
   app
     .add_option("--antialias-samples", antialiasSamples,
@@ -505,8 +508,8 @@ int main(int argc, char* argv[])
     "also write the path length per pixel (from the mirror to the surface seen, scene units; "
     "NaN where none) as a 32-bit float .exr or .tif");
   auto* referenceFlag = app.add_flag("--reference", reference,
-    "render with the exact reference ray tracer instead of the fast path (README \"The "
-    "reference ray tracer\"; overrides the scene's 'renderer')");
+    "render with the exact reference ray tracer instead of the fast path (Documentation/"
+    "reference-ray-tracer.md; overrides the scene's 'renderer')");
   app.add_option("--samples", referenceSamples, "the reference's rays per pixel side (1 to 8)")
     ->type_name("N")
     ->check(CLI::Range(1, 8))
@@ -699,6 +702,24 @@ int main(int argc, char* argv[])
     return 0;
   }
   std::printf("scene: %s\n", scene.empty() ? "(built-in demo)" : scene.c_str());
+  std::printf("image: %d x %d, %lld triangles, SMP backend %s (%d threads)\n", cam->GetImageWidth(),
+    cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
+    vtkSMPTools::GetBackend(), vtkSMPTools::GetEstimatedNumberOfThreads());
+  if (*renderer->GetPoseReport())
+  {
+    std::printf("pose from markers: %s (%.2f ms)\n", renderer->GetPoseReport(),
+      1e3 * renderer->GetPoseTime());
+  }
+  if (*renderer->GetMeshReport())
+  {
+    std::printf("remeshed:\n%s", renderer->GetMeshReport());
+  }
+  for (int s = 0; s < renderer->GetNumberOfStages(); ++s)
+  {
+    std::printf("  %-11s %9.2f ms\n", renderer->GetStageName(s), 1e3 * renderer->GetStageTime(s));
+  }
+  std::printf("  per frame   %9.2f ms (projection + lighting + sort + composite)\n",
+    1e3 * renderer->GetFrameTime());
   std::printf("wrote %s\n", outName.c_str());
   return 0;
 }

@@ -183,7 +183,7 @@ TEST(RenderProgram, DepthAndIdImages)
 }
 
 // --json: one JSON object (read by Python's json), for one image and for a sequence; --quiet:
-// nothing printed on success.
+// nothing printed on success; neither: a summary with the stage times.
 TEST(RenderProgram, JsonSummaryAndQuiet)
 {
   const std::string dir = ::testing::TempDir();
@@ -210,6 +210,14 @@ TEST(RenderProgram, JsonSummaryAndQuiet)
   const auto quiet = Render("--quiet -o '" + dir + "/catar_quiet.png'");
   EXPECT_EQ(quiet.status, 0);
   EXPECT_EQ(quiet.output, "");
+  // Without either: the image, its triangles and the time of each stage, as the help says.
+  const auto plain = Render("-o '" + dir + "/catar_plain.png'");
+  EXPECT_EQ(plain.status, 0);
+  for (const char* line :
+    { "image: 1328 x 1048, ", "  projection ", "  composite ", "  per frame ", "wrote " })
+  {
+    EXPECT_NE(plain.output.find(line), std::string::npos) << line << " in\n" << plain.output;
+  }
 }
 
 // --reference renders with the exact ray tracer: the same silhouette as the fast path (the demo's
