@@ -40,7 +40,7 @@ NOT_RUN = {
 SHARED_DATA = "needs ../shared data"
 PVPYTHON = "needs pvpython"
 CONDITIONAL = {SHARED_DATA, PVPYTHON}
-NOT_COMMANDS = {"text", "yaml", "json", "csv"}
+NOT_COMMANDS = {"text", "yaml", "json", "csv", "cmake"}
 RUN = {"sh", "python"}
 TIMEOUT_S = 90
 

@@ -39,8 +39,8 @@ test -f "$data/calibration/demo-camera.yaml"
 test -f "$data/meshes/trefoil-knot.ply"
 test -f "$data/scenes/two-objects.yaml"
 mkdir "$prefix/empty"
-(cd "$prefix/empty" && "$prefix/bin/catadioptric-render" --quiet scenes/two-objects.yaml \
-  -o two-objects.png && test -s two-objects.png)
+(cd "$prefix/empty" && "$prefix/bin/catadioptric-render" --quiet scenes/trefoil-knot.yaml \
+  -o trefoil-knot.png && test -s trefoil-knot.png)
 # find_package(CatadioptricAR): a downstream C++ program built against the installed tree only
 # (its scene names the installed camera and sample mesh by their data-path names).
 source_dir="$(cd "$(dirname "$0")/../.." && pwd)"
