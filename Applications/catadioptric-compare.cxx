@@ -1,5 +1,5 @@
 // catadioptric-compare: accuracy metrics between two renderings of the same scene (e.g. the
-// rasterised frame against the ray-traced reference), see README "Accuracy metrics".
+// rasterised frame against the ray-traced reference), see Documentation/accuracy-metrics.md.
 //
 //   catadioptric-compare A.png B.png [--background R,G,B[,A]] [--background-image BG.png]
 //                        [--tolerance T] [--silhouette-psnr] [--csv FILE] [--diff FILE]
@@ -37,7 +37,8 @@ void Usage(FILE* out)
     "\n"
     "Compares two renderings of the same scene and prints one metric per line (name value):\n"
     "silhouette IoU, mean and max (Hausdorff) boundary distance in pixels, PSNR of RGB in dB and\n"
-    "SSIM of the luminance (see README \"Accuracy metrics\"). A pixel is part of the object when\n"
+    "SSIM of the luminance (see Documentation/accuracy-metrics.md). A pixel is part of the object "
+    "when\n"
     "it differs from the background (--background, default 0,0,0,255, or the pixel of\n"
     "--background-image) by more than T levels (default 0) in some channel of RGBA.\n"
     "--silhouette-psnr computes the PSNR over the union of the silhouettes only. --csv FILE\n"

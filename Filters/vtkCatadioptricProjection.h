@@ -46,9 +46,9 @@ public:
   ///@}
 
   ///@{
-  /// A trajectory file (README "Sequences": TUM or matrix poses) that moves the camera over time:
-  /// its poses' times are announced as the output's TIME_STEPS (ParaView's animation plays
-  /// them), and each update takes the pose at the time it asks for. Null or "" (the default):
+  /// A trajectory file (Documentation/file-formats.md: TUM or matrix poses) that moves the camera
+  /// over time: its poses' times are announced as the output's TIME_STEPS (ParaView's animation
+  /// plays them), and each update takes the pose at the time it asks for. Null or "" (the default):
   /// the camera's own pose.
   void SetTrajectoryFileName(const char* fileName);
   const char* GetTrajectoryFileName();
@@ -57,7 +57,7 @@ public:
   ///@{
   /// A mirror in place of the camera's (ParaView's panel sets these): a type of
   /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
-  /// that type's numbers in the order of its keys (README, "Calibration files").
+  /// that type's numbers in the order of its keys (Documentation/mirrors.md).
   void SetMirrorType(const char* type);
   const char* GetMirrorType();
   void SetNumberOfMirrorParameters(int n);
@@ -99,13 +99,14 @@ public:
   ///@}
 
   ///@{
-  /// Per-frame tessellation (README "Edges"), in pixels. BoundaryTolerance (default 0.25):
-  /// triangles that cross the visibility boundary (part of them reflected, part hidden by the
-  /// mirror, outside a quadric's z_range, ...) are split and cut at the boundary until it is
-  /// drawn within this many pixels; 0 drops them whole. AdaptiveTolerance (default 0, off):
-  /// triangles whose edges bend more than this many pixels in this frame's image are split, again
-  /// and again, until none does. Split triangles' pieces take their triangle's cell data, new
-  /// points point data interpolated from its vertices; other triangles are left as they are.
+  /// Per-frame tessellation (Documentation/edges-and-rasterisation.md), in pixels.
+  /// BoundaryTolerance (default 0.25): triangles that cross the visibility boundary (part of them
+  /// reflected, part hidden by the mirror, outside a quadric's z_range, ...) are split and cut at
+  /// the boundary until it is drawn within this many pixels; 0 drops them whole. AdaptiveTolerance
+  /// (default 0, off): triangles whose edges bend more than this many pixels in this frame's image
+  /// are split, again and again, until none does. Split triangles' pieces take their triangle's
+  /// cell data, new points point data interpolated from its vertices; other triangles are left as
+  /// they are.
   vtkSetClampMacro(BoundaryTolerance, double, 0.0, 1e6);
   vtkGetMacro(BoundaryTolerance, double);
   vtkSetClampMacro(AdaptiveTolerance, double, 0.0, 1e6);

@@ -142,7 +142,7 @@ public:
   ///@{
   /// A mirror in place of the camera's (ParaView's panel sets these): a type of
   /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
-  /// that type's numbers in the order of its keys (README, "Calibration files").
+  /// that type's numbers in the order of its keys (Documentation/mirrors.md).
   void SetMirrorType(const char* type);
   const char* GetMirrorType();
   void SetNumberOfMirrorParameters(int n);

@@ -1,7 +1,7 @@
 // CatadioptricAR Core: calibration files (YAML or JSON, read with yaml-cpp; written as OpenCV
 // FileStorage writes them, so OpenCV reads them too).
 //
-// The format (README, "Calibration files"): image_width, image_height, camera_matrix (3x3),
+// The format (Documentation/opencv-calibration.md): image_width, image_height, camera_matrix (3x3),
 // distortion_coefficients (k1 k2 p1 p2 [k3]), mirror {type: sphere, center [x y z] in the camera
 // frame, radius}, world_to_camera (4x4). Matrices may be written as OpenCV matrices
 // (!!opencv-matrix) or as plain sequences (row-major).

@@ -1,7 +1,7 @@
 // CatadioptricAR Core: the non-central catadioptric camera model.
 //
 // A perspective camera (intrinsics K, OpenCV lens distortion) looks at a mirror (Mirror.h).
-// Conventions (see README "Conventions"):
+// Conventions (see Documentation/layout-and-conventions.md):
 //  - camera frame as OpenCV: x right, y down, z forward; the camera centre is the origin;
 //  - pixel (0,0) is the centre of the top-left pixel; K maps camera-frame rays to pixels exactly
 //    as cv::projectPoints does (plus an optional skew term K(0,1));

@@ -13,7 +13,7 @@
 //  - sphere radius r: x^2 + y^2 + z^2 - r^2 = 0, cut by z_range (a variant of the closed-form
 //    sphere type, told apart by its keys).
 // Each is written so that it is negative inside (the bowl's side of a sheet, the solid of an
-// ellipsoid); a given Omega must follow the same sign (README, "Calibration files").
+// ellipsoid); a given Omega must follow the same sign (Documentation/mirrors.md).
 //
 // Forward projection: the reflection point r is where the optical path |r| + |P - r| is
 // stationary on the surface (Fermat), found by Newton on the Lagrange system

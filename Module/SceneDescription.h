@@ -3,7 +3,7 @@
 //
 // A scene names the camera (a calibration file or an inline calibration map), the output size,
 // the background, and the objects (a mesh file or a procedural object, a transform, a colour).
-// The keys are documented in README ("Scene files"); every error names the key at fault.
+// The keys are documented in Documentation/file-formats.md; every error names the key at fault.
 #ifndef catarSceneDescription_h
 #define catarSceneDescription_h
 
@@ -167,9 +167,9 @@ struct SceneDescription
   /// every object (only for closed, consistently oriented meshes).
   bool cullBackFaces = false;
   /// Key `edges: { boundary_tolerance: B, adaptive_tolerance: A }` (pixels; defaults 0.25 and 0):
-  /// vtkCatadioptricProjection's BoundaryTolerance and AdaptiveTolerance for every object (README
-  /// "Edges"). Key `adaptive: { pixel_tolerance: A }` is the same as adaptive_tolerance; an
-  /// object's own `adaptive` overrides it for that object.
+  /// vtkCatadioptricProjection's BoundaryTolerance and AdaptiveTolerance for every object
+  /// (Documentation/edges-and-rasterisation.md). Key `adaptive: { pixel_tolerance: A }` is the same
+  /// as adaptive_tolerance; an object's own `adaptive` overrides it for that object.
   double boundaryTolerance = 0.25;
   double adaptiveTolerance = 0.0;
   /// Key `renderer`: "fast" (default: projection, lighting, sort, compositing) or "reference"
@@ -218,8 +218,8 @@ bool LoadScene(const std::string& path, SceneDescription& scene, std::string& er
 bool ParseScene(
   const std::string& text, const std::string& baseDir, SceneDescription& scene, std::string& error);
 
-/// The built-in demo scene (README's picture): the paper's parallelepiped and a torus, seen in a
-/// spherical mirror hanging in a procedural room.
+/// The built-in demo scene (the picture in README): the paper's parallelepiped and a torus, seen in
+/// a spherical mirror hanging in a procedural room.
 SceneDescription DemoScene();
 /// The demo scene as YAML text (the same scene DemoScene() returns).
 const char* DemoSceneText();

@@ -1,10 +1,11 @@
 // CatadioptricAR Core: camera trajectories (timed world-to-camera poses read from and written to
 // text files) and keyframed rigid motions for scene objects and lights.
 //
-// Conventions (README "Conventions"): a pose is world-to-camera, p_camera = R p_world + t; the
-// camera centre in the world is -R^T t. Interpolation between two poses moves the camera centre
-// along a straight line and turns the rotation by slerp (the shortest rotation between them),
-// both at a constant rate in time; before the first and after the last pose the end pose holds.
+// Conventions (Documentation/layout-and-conventions.md): a pose is world-to-camera, p_camera = R
+// p_world + t; the camera centre in the world is -R^T t. Interpolation between two poses moves the
+// camera centre along a straight line and turns the rotation by slerp (the shortest rotation
+// between them), both at a constant rate in time; before the first and after the last pose the end
+// pose holds.
 #ifndef catarTrajectory_h
 #define catarTrajectory_h
 

@@ -10,9 +10,9 @@
  *
  * Polygons are drawn in cell order (painter order; polygons are split into fans) by the Core CPU
  * rasteriser: a pixel is covered when its centre lies inside the projected triangle, with the
- * top-left rule on edges, vertex positions snapped to 1/256 pixel (see README "Rasterisation").
- * Several meshes are merged into one far-to-near order by their CentroidDepth. Cells whose Visible
- * flag is 0 are skipped.
+ * top-left rule on edges, vertex positions snapped to 1/256 pixel (see
+ * Documentation/edges-and-rasterisation.md). Several meshes are merged into one far-to-near order
+ * by their CentroidDepth. Cells whose Visible flag is 0 are skipped.
  *
  * Visibility: PAINTER (default, the paper's method) trusts that order: the last triangle drawn in
  * a pixel is the one seen. DEPTH_BUFFER adds a per-pixel z-test: each triangle carries, at its

@@ -48,9 +48,9 @@ public:
   ///@}
 
   ///@{
-  /// A trajectory file (README "Sequences": TUM or matrix poses) that moves the camera over time:
-  /// its poses' times are announced as the output's TIME_STEPS (ParaView's animation plays
-  /// them), and each update takes the pose at the time it asks for. Null or "" (the default):
+  /// A trajectory file (Documentation/file-formats.md: TUM or matrix poses) that moves the camera
+  /// over time: its poses' times are announced as the output's TIME_STEPS (ParaView's animation
+  /// plays them), and each update takes the pose at the time it asks for. Null or "" (the default):
   /// the camera's own pose.
   void SetTrajectoryFileName(const char* fileName);
   const char* GetTrajectoryFileName();
@@ -59,7 +59,7 @@ public:
   ///@{
   /// A mirror in place of the camera's (ParaView's panel sets these): a type of
   /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
-  /// that type's numbers in the order of its keys (README, "Calibration files").
+  /// that type's numbers in the order of its keys (Documentation/mirrors.md).
   void SetMirrorType(const char* type);
   const char* GetMirrorType();
   void SetNumberOfMirrorParameters(int n);

@@ -8,9 +8,9 @@
  * camera frame x right, y down, z forward; pixel (0,0) is the centre of the top-left pixel. Lengths
  * are in any one unit.
  *
- * It loads and saves calibration files (YAML or JSON, see README "Calibration files"), projects
- * world points through the mirror, back-projects pixels to reflected rays, and writes itself to /
- * reads itself from field data, which is how it travels down a pipeline.
+ * It loads and saves calibration files (YAML or JSON, see Documentation/opencv-calibration.md),
+ * projects world points through the mirror, back-projects pixels to reflected rays, and writes
+ * itself to / reads itself from field data, which is how it travels down a pipeline.
  *
  * Every projection returns a status (see StatusCodes) instead of producing NaNs.
  */
@@ -99,8 +99,8 @@ public:
   /// GetLastError, false) and changes nothing.
   bool SetMirrorType(const char* type);
   const char* GetMirrorType() { return this->MirrorType.c_str(); }
-  /// The mirror types there are, and the keys of a type's parameters in order (README,
-  /// "Calibration files", says what each means).
+  /// The mirror types there are, and the keys of a type's parameters in order
+  /// (Documentation/mirrors.md says what each means).
   static std::vector<std::string> GetMirrorTypes();
   static std::vector<std::string> GetMirrorParameterKeys(const char* type);
   ///@}

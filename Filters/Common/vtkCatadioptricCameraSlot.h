@@ -55,8 +55,8 @@ public:
   }
   double GetMirrorParameter(int i) const;
 
-  /// A trajectory file (README "Sequences": TUM or matrix poses; null or "" for none); returns
-  /// true when it changed. With one, the camera's pose is the trajectory's at the time the
+  /// A trajectory file (Documentation/file-formats.md: TUM or matrix poses; null or "" for none);
+  /// returns true when it changed. With one, the camera's pose is the trajectory's at the time the
   /// pipeline asks for.
   bool SetTrajectoryFileName(const char* fileName);
   const char* GetTrajectoryFileName() const;

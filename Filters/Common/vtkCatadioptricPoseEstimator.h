@@ -2,11 +2,11 @@
  * @class   vtkCatadioptricPoseEstimator
  * @brief   the camera's pose from pixels of known world points (generalized absolute pose)
  *
- * VTK's face of catar::EstimatePose (Module/PoseEstimation.h; README "Pose from the image"):
- * given a camera (intrinsics, distortion, mirror) and, for N known world points, the pixels where
- * the image shows them, finds the world-to-camera pose. Each pixel's reflected ray must pass
- * through its point: OpenGV's GP3P in RANSAC, inliers by the pixel reprojection error through the
- * mirror, then a Ceres refinement. Outliers are rejected.
+ * VTK's face of catar::EstimatePose (Module/PoseEstimation.h;
+ * Documentation/pose-from-the-image.md): given a camera (intrinsics, distortion, mirror) and, for N
+ * known world points, the pixels where the image shows them, finds the world-to-camera pose. Each
+ * pixel's reflected ray must pass through its point: OpenGV's GP3P in RANSAC, inliers by the pixel
+ * reprojection error through the mirror, then a Ceres refinement. Outliers are rejected.
  *
  * @code
  * estimator.SetCamera(camera)

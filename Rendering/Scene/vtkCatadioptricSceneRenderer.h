@@ -2,9 +2,10 @@
  * @class   vtkCatadioptricSceneRenderer
  * @brief   renders a scene file (or the built-in demo) through the whole pipeline
  *
- * Reads a scene (YAML/JSON, see README "Scene files"), builds the objects (mesh files through
- * VTK's readers, or procedural boxes, spheres, tori, cylinders, planes), and runs, for every
- * frame, projection -> lighting (when the scene is lit; every object casts shadows on the others)
+ * Reads a scene (YAML/JSON, see Documentation/file-formats.md), builds the objects (mesh files
+ * through VTK's readers, or procedural boxes, spheres, tori, cylinders, planes), and runs, for
+ * every frame, projection -> lighting (when the scene is lit; every object casts shadows on the
+ * others)
  * -> painter sort -> compositing onto the background (a synthesised room, a colour, or an image
  * file). The scene key `visibility` sets the compositor's Visibility (painter order or a depth
  * buffer). Meshes are prepared once; Render() can be called again after the
@@ -143,7 +144,7 @@ public:
   bool Render();
 
   ///@{
-  /// Sequences (README "Sequences"): a scene with a `trajectory`, a `video` background,
+  /// Sequences (Documentation/file-formats.md): a scene with a `trajectory`, a `video` background,
   /// keyframed objects or lights, or a `sequence` key has several frames; a still scene has one.
   /// LoadScene() plans them and sets up frame 0. RenderFrame(k) moves the camera, the objects
   /// and the lights to frame k, takes the background's frame k, and renders; only what moved is
@@ -151,7 +152,7 @@ public:
   /// lighting only). GetFrameRate() is the rate a video of the sequence plays at;
   /// GetSequenceNote() a sentence when video and trajectory differ in length ("" otherwise).
   int GetNumberOfFrames();
-  /// Pose from markers (README "Markers"): a marker board file whose markers, found in each
+  /// Pose from markers (Documentation/markers.md): a marker board file whose markers, found in each
   /// background frame, give that frame's camera pose (overrides the scene's `markers`; "" keeps
   /// the scene's). Applied at the next LoadScene().
   vtkSetStringMacro(MarkerBoardFileName);

@@ -1,10 +1,10 @@
 // Image baseline of the demo scene, plus checks that do not depend on the baseline: the objects
 // land where the camera projects them.
 //
-// Tolerance (README "Testing"): the images match when at most 0.1% of the pixels differ by more
-// than 24 levels in some channel and the mean absolute difference is at most 1 level. On failure
-// the rendered image and a difference image (x4) are written to Testing/Temporary of the build
-// tree. CATAR_UPDATE_BASELINES=1 rewrites the baseline instead.
+// Tolerance (Documentation/testing.md): the images match when at most 0.1% of the pixels differ by
+// more than 24 levels in some channel and the mean absolute difference is at most 1 level. On
+// failure the rendered image and a difference image (x4) are written to Testing/Temporary of the
+// build tree. CATAR_UPDATE_BASELINES=1 rewrites the baseline instead.
 #include "SceneDescription.h"
 
 #include "vtkCatadioptricCamera.h"

@@ -289,7 +289,8 @@ objects:
 // How small a marker may be and still be found through the mirror: one marker on the floor, of
 // sides from 3 to 30 cm, 0.5 to 1.2 m behind the camera; its image's size (the longest side of
 // the quadrilateral of its projected corners, and its shortest: markers on the floor are seen
-// foreshortened) against whether it is found. README quotes the table this prints.
+// foreshortened) against whether it is found. Documentation/markers.md quotes the table this
+// prints.
 TEST(Markers, TheSmallestMarkerFoundThroughTheMirror)
 {
   const std::string dir = Folder("sizes");
@@ -329,7 +330,7 @@ TEST(Markers, TheSmallestMarkerFoundThroughTheMirror)
   }
   std::cout << std::endl;
   // Markers of at least 25 px on their shortest side are found, none under 8 px is; between,
-  // it depends on the view (README).
+  // it depends on the view (Documentation/markers.md).
   EXPECT_EQ(missedAbove25, 0);
   EXPECT_EQ(foundBelow8, 0);
   EXPECT_LT(smallestFound, 15.0);

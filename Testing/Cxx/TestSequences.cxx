@@ -1,6 +1,7 @@
-// Sequences (README "Sequences"): frame k of a scene with a trajectory is the still scene at pose
-// k; keyframed objects are where the still scene puts them; a frame recomputes only what moved;
-// video backgrounds and outputs round-trip through OpenCV; catadioptric-render writes every frame.
+// Sequences (Documentation/file-formats.md): frame k of a scene with a trajectory is the still
+// scene at pose k; keyframed objects are where the still scene puts them; a frame recomputes only
+// what moved; video backgrounds and outputs round-trip through OpenCV; catadioptric-render writes
+// every frame.
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
