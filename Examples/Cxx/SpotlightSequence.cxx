@@ -16,6 +16,8 @@
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
 
+#include <vtksys/SystemTools.hxx>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -104,7 +106,10 @@ int main(int argc, char* argv[])
   }
   vtkCatadioptricParallel::EnableThreads();
   const std::string scenePath = prefix + "-scene.yaml";
-  std::ofstream(scenePath) << SceneText(mesh, w, h, shading, shadows);
+  // The scene file sits beside the frames: a mesh named relative to the working folder is named
+  // by its full path there.
+  const std::string meshPath = mesh.empty() ? mesh : vtksys::SystemTools::CollapseFullPath(mesh);
+  std::ofstream(scenePath) << SceneText(meshPath, w, h, shading, shadows);
   vtkNew<vtkCatadioptricSceneRenderer> renderer;
   renderer->SetSceneFileName(scenePath.c_str());
   if (!renderer->LoadScene())
