@@ -6,16 +6,22 @@
 #include "Projector.h"
 #include "SceneDescription.h"
 
+#include "vtkCatadioptricParallel.h"
+#include "vtkDataArray.h"
 #include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerVectorKey.h"
+#include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkStringArray.h"
 
 #include <algorithm>
+#include <initializer_list>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkCatadioptricCamera);
 
@@ -401,6 +407,119 @@ int vtkCatadioptricCamera::BackProjectPixel(
   std::copy(r.mirrorPoint.data(), r.mirrorPoint.data() + 3, origin);
   std::copy(r.direction.data(), r.direction.data() + 3, direction);
   return static_cast<int>(r.status);
+}
+
+namespace
+{
+// The checks both batch calls share: the input's components, the outputs there, a valid camera.
+bool CheckBatch(vtkDataArray* in, int components, std::initializer_list<vtkDataArray*> outs,
+  const std::string& what, std::string& error)
+{
+  if (!in || in->GetNumberOfComponents() != components)
+  {
+    error = what + ": the input array must have " + std::to_string(components) + " components";
+    return false;
+  }
+  for (vtkDataArray* out : outs)
+  {
+    if (!out)
+    {
+      error = what + ": every output array must be given";
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+bool vtkCatadioptricCamera::ProjectWorldPoints(vtkDataArray* points, vtkDoubleArray* pixels,
+  vtkIntArray* statuses, vtkDoubleArray* mirrorPoints, int solver)
+{
+  const catar::Projector proj(this->GetModel());
+  std::string error;
+  if (CheckBatch(points, 3, { pixels, statuses, mirrorPoints }, "ProjectWorldPoints", error) &&
+    !proj.IsValid())
+  {
+    error = "ProjectWorldPoints: " + proj.GetError();
+  }
+  if (!error.empty())
+  {
+    this->LastError = error;
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  const vtkIdType n = points->GetNumberOfTuples();
+  pixels->SetNumberOfComponents(2);
+  pixels->SetNumberOfTuples(n);
+  statuses->SetNumberOfComponents(1);
+  statuses->SetNumberOfTuples(n);
+  mirrorPoints->SetNumberOfComponents(3);
+  mirrorPoints->SetNumberOfTuples(n);
+  const catar::SolverType type =
+    solver == 1 ? catar::SolverType::Iterative : catar::SolverType::Quartic;
+  double* pixel = pixels->GetPointer(0);
+  int* status = statuses->GetPointer(0);
+  double* mirror = mirrorPoints->GetPointer(0);
+  vtkCatadioptricParallel::For(0, n, 256, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      double p[3];
+      points->GetTuple(i, p);
+      const catar::ProjectedPoint q = proj.ProjectWorld(catar::Vec3(p[0], p[1], p[2]), type);
+      pixel[2 * i] = q.pixel.x();
+      pixel[2 * i + 1] = q.pixel.y();
+      std::copy(q.mirrorPoint.data(), q.mirrorPoint.data() + 3, mirror + 3 * i);
+      status[i] = static_cast<int>(q.status);
+    }
+  });
+  return true;
+}
+
+bool vtkCatadioptricCamera::BackProjectPixels(
+  vtkDataArray* pixels, vtkDoubleArray* origins, vtkDoubleArray* directions, vtkIntArray* statuses)
+{
+  const catar::Projector proj(this->GetModel());
+  std::string error;
+  if (CheckBatch(pixels, 2, { origins, directions, statuses }, "BackProjectPixels", error) &&
+    !proj.IsValid())
+  {
+    error = "BackProjectPixels: " + proj.GetError();
+  }
+  if (!error.empty())
+  {
+    this->LastError = error;
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  const vtkIdType n = pixels->GetNumberOfTuples();
+  origins->SetNumberOfComponents(3);
+  origins->SetNumberOfTuples(n);
+  directions->SetNumberOfComponents(3);
+  directions->SetNumberOfTuples(n);
+  statuses->SetNumberOfComponents(1);
+  statuses->SetNumberOfTuples(n);
+  double* origin = origins->GetPointer(0);
+  double* direction = directions->GetPointer(0);
+  int* status = statuses->GetPointer(0);
+  vtkCatadioptricParallel::For(0, n, 256, [&](vtkIdType b, vtkIdType e) {
+    std::vector<catar::Vec2> in(static_cast<std::size_t>(e - b));
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      double p[2];
+      pixels->GetTuple(i, p);
+      in[static_cast<std::size_t>(i - b)] = catar::Vec2(p[0], p[1]);
+    }
+    std::vector<catar::BackProjectedRay> out(in.size());
+    proj.BackProjectWorld(in.size(), in.data(), out.data());
+    for (vtkIdType i = b; i < e; ++i)
+    {
+      const catar::BackProjectedRay& r = out[static_cast<std::size_t>(i - b)];
+      std::copy(r.mirrorPoint.data(), r.mirrorPoint.data() + 3, origin + 3 * i);
+      std::copy(r.direction.data(), r.direction.data() + 3, direction + 3 * i);
+      status[i] = static_cast<int>(r.status);
+    }
+  });
+  return true;
 }
 
 void vtkCatadioptricCamera::WriteToFieldData(vtkFieldData* fd)

@@ -26,6 +26,9 @@
 
 class vtkFieldData;
 class vtkInformationIntegerVectorKey;
+class vtkDataArray;
+class vtkDoubleArray;
+class vtkIntArray;
 class vtkMatrix4x4;
 
 namespace catar
@@ -156,6 +159,22 @@ public:
   /// Back projection of a pixel to the reflected ray in world coordinates: it leaves `origin`
   /// (on the mirror) along the unit vector `direction`. Returns a status code.
   int BackProjectPixel(const double pixel[2], double origin[3], double direction[3]);
+
+  ///@{
+  /// The same for many points at once, on the thread pool (vtkCatadioptricParallel): the results
+  /// are those of ProjectWorldPoint / BackProjectPixel point by point. ProjectWorldPoints takes
+  /// world points (3 components, any numeric type) and fills pixels (2 components), statuses and
+  /// mirror points (3 components, camera frame); BackProjectPixels takes pixels (2 components)
+  /// and fills ray origins and unit directions (3 components, world frame) and statuses. The
+  /// output arrays are resized to the input's tuples. False, after reporting it through
+  /// vtkErrorMacro and GetLastError(), for a missing array, a wrong component count or an
+  /// invalid camera. From Python, catadioptricar.project_points and back_project wrap them for
+  /// numpy arrays.
+  bool ProjectWorldPoints(vtkDataArray* points, vtkDoubleArray* pixels, vtkIntArray* statuses,
+    vtkDoubleArray* mirrorPoints, int solver = 0);
+  bool BackProjectPixels(vtkDataArray* pixels, vtkDoubleArray* origins, vtkDoubleArray* directions,
+    vtkIntArray* statuses);
+  ///@}
 
   ///@{
   /// Store the camera in / restore it from field data (arrays CameraIntrinsics,

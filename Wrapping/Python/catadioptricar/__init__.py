@@ -49,3 +49,240 @@ def enable_threads(n=None):
 
 
 __all__.append("enable_threads")
+
+
+def _numpy():
+    import numpy
+
+    return numpy
+
+
+def image_to_numpy(image, bgr=False):
+    """A vtkImageData (2D, unsigned char scalars) as a numpy array, top row first.
+
+    VTK stores the bottom row first; OpenCV, matplotlib and PIL expect the top row first, which
+    is what this returns (a copy, not a view of VTK's memory).
+
+    Parameters
+    ----------
+    image : vtkImageData
+        A 2D image, for example the output of vtkCatadioptricCompositor or of
+        vtkCatadioptricSceneRenderer.GetOutput(); its point-data scalars are read.
+    bgr : bool, optional
+        Swap the first and third channels (OpenCV's order) of a 3- or 4-channel image.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``H x W x C`` (``C`` the scalars' components: 4 for RGBA) of the scalars' type
+        (``uint8`` for the renderers' images).
+
+    Examples
+    --------
+    >>> import catadioptricar as car
+    >>> frame = car.render("Data/scenes/two-objects.yaml")   # the same as:
+    >>> scene = car.vtkCatadioptricSceneRenderer()
+    >>> scene.SetSceneFileName("Data/scenes/two-objects.yaml")
+    >>> scene.Render()
+    True
+    >>> car.image_to_numpy(scene.GetOutput()).shape
+    (524, 664, 4)
+    """
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    np = _numpy()
+    if image is None or image.GetPointData().GetScalars() is None:
+        raise ValueError("image_to_numpy: the image has no scalars")
+    width, height, depth = image.GetDimensions()
+    if depth != 1:
+        raise ValueError("image_to_numpy: a 2D image is needed, not %d slices" % depth)
+    scalars = vtk_to_numpy(image.GetPointData().GetScalars())
+    array = scalars.reshape(height, width, -1)[::-1]
+    if bgr and array.shape[2] >= 3:
+        array = array[:, :, [2, 1, 0] + list(range(3, array.shape[2]))]
+    return np.ascontiguousarray(array)
+
+
+def numpy_to_image(array, bgr=False):
+    """A numpy image (top row first) as a vtkImageData, for frames and textures.
+
+    Parameters
+    ----------
+    array : array_like
+        ``H x W`` (grey) or ``H x W x C`` with ``C`` of 1 to 4, top row first, as OpenCV,
+        matplotlib and PIL give it; ``uint8`` as the compositor, the ray tracer and the
+        textures expect (other types are kept as they are).
+    bgr : bool, optional
+        The array is in OpenCV's channel order (``cv2.imread``): swap the first and third
+        channels.
+
+    Returns
+    -------
+    vtkImageData
+        ``W x H`` pixels, origin 0, spacing 1, bottom row first (VTK's order), the values copied.
+
+    Examples
+    --------
+    >>> import numpy, catadioptricar as car
+    >>> frame = numpy.zeros((1048, 1328, 3), numpy.uint8)        # a black camera frame
+    >>> image = car.numpy_to_image(frame)
+    >>> image.GetDimensions()
+    (1328, 1048, 1)
+    >>> compositor = car.vtkCatadioptricCompositor()
+    >>> compositor.SetInputData(0, image)                       # the frame to draw on
+    """
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+
+    np = _numpy()
+    a = np.asarray(array)
+    if a.ndim == 2:
+        a = a[:, :, None]
+    if a.ndim != 3 or not 1 <= a.shape[2] <= 4 or a.shape[0] < 1 or a.shape[1] < 1:
+        raise ValueError("numpy_to_image: an H x W or H x W x C array (C of 1 to 4) is needed, "
+                         "not %s" % (a.shape,))
+    if bgr and a.shape[2] >= 3:
+        a = a[:, :, [2, 1, 0] + list(range(3, a.shape[2]))]
+    height, width, channels = a.shape
+    flat = np.ascontiguousarray(a[::-1]).reshape(-1, channels)
+    image = vtkImageData()
+    image.SetDimensions(width, height, 1)
+    scalars = numpy_to_vtk(flat, deep=True)
+    scalars.SetName("Scalars")
+    image.GetPointData().SetScalars(scalars)
+    return image
+
+
+def _vtk_out(kind):
+    from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIntArray
+
+    return vtkDoubleArray() if kind == "double" else vtkIntArray()
+
+
+def project_points(camera, points, solver="quartic"):
+    """Project many world points through the mirror at once (C++, on the thread pool).
+
+    The same results as ``camera.ProjectWorldPoint`` point by point.
+
+    Parameters
+    ----------
+    camera : vtkCatadioptricCamera
+    points : array_like
+        ``N x 3`` world points (or one point of 3).
+    solver : {"quartic", "iterative"}, optional
+        The closed-form quartic (default) or the safeguarded Newton iteration.
+
+    Returns
+    -------
+    pixels : numpy.ndarray
+        ``N x 2`` pixel coordinates (OpenCV's convention: (0, 0) the centre of the top-left
+        pixel); zero where the status says there is no projection.
+    statuses : numpy.ndarray
+        ``N`` status codes (``vtkCatadioptricCamera.VALID`` = 0, ``OUTSIDE_IMAGE``, ...).
+    mirror_points : numpy.ndarray
+        ``N x 3`` reflection points on the mirror, in the camera frame.
+
+    Examples
+    --------
+    >>> import numpy, catadioptricar as car
+    >>> camera = car.vtkCatadioptricCamera()          # the built-in demo camera
+    >>> pixels, statuses, mirror = car.project_points(camera, [[0.15, -0.35, 0.95]])
+    >>> int(statuses[0]) == car.vtkCatadioptricCamera.VALID
+    True
+    """
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+
+    np = _numpy()
+    if solver not in ("quartic", "iterative"):
+        raise ValueError("project_points: solver must be 'quartic' or 'iterative', not %r" % (solver,))
+    p = np.ascontiguousarray(np.asarray(points, dtype=np.float64).reshape(-1, 3))
+    pixels, statuses, mirror = _vtk_out("double"), _vtk_out("int"), _vtk_out("double")
+    if not camera.ProjectWorldPoints(numpy_to_vtk(p, deep=True), pixels, statuses, mirror,
+                                     1 if solver == "iterative" else 0):
+        raise ValueError(camera.GetLastError())
+    n = p.shape[0]
+    return (vtk_to_numpy(pixels).reshape(n, 2).copy(), vtk_to_numpy(statuses).reshape(n).copy(),
+            vtk_to_numpy(mirror).reshape(n, 3).copy())
+
+
+def back_project(camera, pixels):
+    """The reflected rays of many pixels at once (C++, on the thread pool).
+
+    The same results as ``camera.BackProjectPixel`` pixel by pixel.
+
+    Parameters
+    ----------
+    camera : vtkCatadioptricCamera
+    pixels : array_like
+        ``N x 2`` pixel coordinates (or one pixel of 2), OpenCV's convention.
+
+    Returns
+    -------
+    origins : numpy.ndarray
+        ``N x 3`` points where the rays leave the mirror, world frame.
+    directions : numpy.ndarray
+        ``N x 3`` unit directions of the reflected rays, world frame.
+    statuses : numpy.ndarray
+        ``N`` status codes (``vtkCatadioptricCamera.VALID`` = 0 where the pixel sees the mirror).
+
+    Examples
+    --------
+    >>> import catadioptricar as car
+    >>> camera = car.vtkCatadioptricCamera()
+    >>> origins, directions, statuses = car.back_project(camera, [[663.5, 523.5]])
+    >>> round(float((directions ** 2).sum()), 6)
+    1.0
+    """
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+
+    np = _numpy()
+    q = np.ascontiguousarray(np.asarray(pixels, dtype=np.float64).reshape(-1, 2))
+    origins, directions, statuses = _vtk_out("double"), _vtk_out("double"), _vtk_out("int")
+    if not camera.BackProjectPixels(numpy_to_vtk(q, deep=True), origins, directions, statuses):
+        raise ValueError(camera.GetLastError())
+    n = q.shape[0]
+    return (vtk_to_numpy(origins).reshape(n, 3).copy(),
+            vtk_to_numpy(directions).reshape(n, 3).copy(),
+            vtk_to_numpy(statuses).reshape(n).copy())
+
+
+def render(scene_file=None, bgr=False, antialias=0):
+    """Render a scene file and return the frame as numpy (``H x W x 4`` RGBA ``uint8``).
+
+    Parameters
+    ----------
+    scene_file : str, optional
+        A scene file (YAML or JSON, Documentation/file-formats.md); None renders the built-in
+        demo scene.
+    bgr : bool, optional
+        OpenCV's channel order (B, G, R, A).
+    antialias : int, optional
+        Samples per pixel side of the anti-aliased edges (2 to 4); 0 keeps the scene's setting.
+
+    Returns
+    -------
+    numpy.ndarray
+        The frame, top row first.
+
+    Raises
+    ------
+    RuntimeError
+        When the scene cannot be read or rendered (the renderer's error).
+
+    Examples
+    --------
+    >>> import catadioptricar as car
+    >>> frame = car.render("Data/scenes/two-objects.yaml")
+    >>> frame.shape, frame.dtype
+    ((524, 664, 4), dtype('uint8'))
+    """
+    scene = vtkCatadioptricSceneRenderer()  # noqa: F405 (from CatadioptricARScene)
+    if scene_file is not None:
+        scene.SetSceneFileName(str(scene_file))
+    scene.SetAntialias(int(antialias))
+    if not scene.Render():
+        raise RuntimeError(scene.GetLastError())
+    return image_to_numpy(scene.GetOutput(), bgr=bgr)
+
+
+__all__ += ["image_to_numpy", "numpy_to_image", "project_points", "back_project", "render"]

@@ -1,0 +1,122 @@
+"""catadioptricar's numpy helpers: images to numpy and back (top row first, BGR on request),
+vectorised projection and back projection equal to the point-by-point calls and inverse to each
+other, render() equal to the scene renderer's output, bad shapes refused. Prints the time per
+point of the vectorised calls against a Python loop of the point-by-point ones."""
+
+import sys
+import time
+
+import numpy as np
+
+import catadioptricar as car
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+rng = np.random.default_rng(7)
+
+# Images: round trips of every channel count, the row order, BGR.
+for shape in [(5, 7), (5, 7, 1), (6, 4, 3), (3, 8, 4)]:
+    a = rng.integers(0, 256, size=shape, dtype=np.uint8)
+    image = car.numpy_to_image(a)
+    width, height, _ = image.GetDimensions()
+    check((width, height) == (shape[1], shape[0]), "dimensions of %s" % (shape,))
+    back = car.image_to_numpy(image)
+    check(back.shape == (shape[0], shape[1], 1 if len(shape) == 2 else shape[2]),
+          "shape back %s" % (back.shape,))
+    check((back.reshape(a.shape) == a).all(), "round trip of %s" % (shape,))
+    # The array's top-left pixel is VTK's (0, H - 1).
+    top_left = image.GetScalarComponentAsDouble(0, height - 1, 0, 0)
+    check(top_left == a.reshape(shape[0], shape[1], -1)[0, 0, 0], "row order of %s" % (shape,))
+a = rng.integers(0, 256, size=(4, 5, 4), dtype=np.uint8)
+check((car.image_to_numpy(car.numpy_to_image(a), bgr=True) == a[:, :, [2, 1, 0, 3]]).all(),
+      "image_to_numpy bgr")
+check((car.image_to_numpy(car.numpy_to_image(a, bgr=True)) == a[:, :, [2, 1, 0, 3]]).all(),
+      "numpy_to_image bgr")
+for bad in [np.zeros((2, 3, 5), np.uint8), np.zeros((0, 3), np.uint8), np.zeros(4, np.uint8)]:
+    try:
+        car.numpy_to_image(bad)
+        check(False, "numpy_to_image accepted %s" % (bad.shape,))
+    except ValueError:
+        pass
+
+# Projection: the demo scene's camera, world points around the mirror.
+scene = car.vtkCatadioptricSceneRenderer()
+check(scene.LoadScene(), "demo scene")
+camera = scene.GetCamera()
+n = 3000
+points = np.column_stack([rng.uniform(-1, 1, n), rng.uniform(-1.5, 0.5, n), rng.uniform(0, 2, n)])
+for solver, code in (("quartic", 0), ("iterative", 1)):
+    t0 = time.perf_counter()
+    pixels, statuses, mirror = car.project_points(camera, points, solver=solver)
+    vectorised = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    worst, mismatched = 0.0, 0
+    for i in range(n):
+        pixel, m = [0.0, 0.0], [0.0, 0.0, 0.0]
+        status = camera.ProjectWorldPoint(points[i], pixel, m, code)
+        mismatched += status != statuses[i]
+        worst = max(worst, abs(pixel[0] - pixels[i, 0]), abs(pixel[1] - pixels[i, 1]),
+                    *np.abs(np.array(m) - mirror[i]))
+    loop = time.perf_counter() - t0
+    valid = int((statuses == car.vtkCatadioptricCamera.VALID).sum())
+    print("project_points (%s): %d points, %d valid; %.2f us a point against %.2f us in a Python "
+          "loop; largest difference %.1e, statuses differing %d"
+          % (solver, n, valid, 1e6 * vectorised / n, 1e6 * loop / n, worst, mismatched))
+    check(valid > 300, "valid projections (%d)" % valid)
+    check(mismatched == 0 and worst == 0.0, "project_points equals ProjectWorldPoint (%s)" % solver)
+
+# Back projection: a grid of pixels; equal to BackProjectPixel; inverse of the projection.
+u, v = np.meshgrid(np.linspace(300, 1000, 40), np.linspace(200, 850, 30))
+grid = np.column_stack([u.ravel(), v.ravel()])
+t0 = time.perf_counter()
+origins, directions, statuses = car.back_project(camera, grid)
+vectorised = time.perf_counter() - t0
+worst = 0.0
+t0 = time.perf_counter()
+for i in range(len(grid)):
+    o, d = [0.0] * 3, [0.0] * 3
+    status = camera.BackProjectPixel(grid[i], o, d)
+    check(status == statuses[i], "back projection status of pixel %d" % i)
+    worst = max(worst, *np.abs(np.array(o) - origins[i]), *np.abs(np.array(d) - directions[i]))
+loop = time.perf_counter() - t0
+valid = statuses == car.vtkCatadioptricCamera.VALID
+print("back_project: %d pixels, %d valid; %.2f us a pixel against %.2f us in a Python loop; "
+      "largest difference %.1e" % (len(grid), valid.sum(), 1e6 * vectorised / len(grid),
+                                    1e6 * loop / len(grid), worst))
+check(worst < 1e-12, "back_project equals BackProjectPixel (%.1e)" % worst)
+check(valid.sum() > 500, "pixels that see the mirror (%d)" % valid.sum())
+check(np.allclose((directions[valid] ** 2).sum(axis=1), 1.0, atol=1e-12), "unit directions")
+# A point 0.6 m along each ray projects back to its pixel.
+along = origins[valid] + 0.6 * directions[valid]
+pixels, statuses_back, _ = car.project_points(camera, along)
+error = np.abs(pixels - grid[valid]).max()
+print("back projection then projection: largest pixel error %.1e" % error)
+check((statuses_back <= car.vtkCatadioptricCamera.OUTSIDE_IMAGE).all() and error < 1e-6,
+      "projection inverts back projection (%.1e px)" % error)
+try:
+    car.project_points(camera, np.zeros((4, 2)))
+    check(False, "project_points accepted N x 2")
+except ValueError:
+    pass
+
+# render(): the scene renderer's frame, top row first.
+frame = car.render()
+check(frame.shape == (1048, 1328, 4) and frame.dtype == np.uint8, "render() shape %s" % (frame.shape,))
+check(scene.Render(), "demo render")
+check((frame == car.image_to_numpy(scene.GetOutput())).all(), "render() equals the renderer")
+check((car.render(bgr=True)[:, :, :3] == frame[:, :, 2::-1]).all(), "render(bgr=True)")
+try:
+    car.render("/nonexistent/scene.yaml")
+    check(False, "render of a missing file")
+except RuntimeError as e:
+    check("/nonexistent/scene.yaml" in str(e), "the error names the file: %s" % e)
+
+print("numpy helpers: %d failed" % len(failures))
+sys.exit(1 if failures else 0)
