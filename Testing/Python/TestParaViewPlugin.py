@@ -27,8 +27,26 @@ HYPERBOLOID = CALIBRATION.replace(
     "                              0, 0.0697564737441253, 0.9975640502598242, 0.05,  0, 0, 0, 1 ] }")
 
 
+def check_menu():
+    """Every proxy of the plugin is in the CatadioptricAR menu category (Filters or Sources)."""
+    pxm = servermanager.ProxyManager()
+    names = {"filters": ["CatadioptricRemesher", "CatadioptricPointSetSurface",
+                         "CatadioptricProjection", "CatadioptricLighting", "CatadioptricPainterSort",
+                         "CatadioptricCompositor", "CatadioptricRayTracer"],
+             "sources": ["CatadioptricEnvironmentSource"]}
+    for group, proxies in names.items():
+        for name in proxies:
+            prototype = pxm.SMProxyManager.GetPrototypeProxy(group, name)
+            assert prototype is not None, (group, name)
+            hints = prototype.GetHints()
+            menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+            assert menu is not None and menu.GetAttribute("category") == "CatadioptricAR", name
+    print("menu: the 8 proxies under CatadioptricAR")
+
+
 def main():
     simple.LoadPlugin(plugin, remote=False)
+    check_menu()
     # The plugin's proxies are now in paraview.simple, named after their labels.
     Sphere = simple.Sphere
     CatadioptricProjection = simple.CatadioptricProjection
