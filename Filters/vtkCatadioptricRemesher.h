@@ -151,6 +151,26 @@ public:
   double GetMirrorParameter(int i);
   ///@}
 
+  ///@{
+  /// The camera used when no camera object and no CalibrationFileName are set (ParaView's
+  /// panel): the built-in demo camera's values (Data/calibration/demo-camera.yaml) until changed.
+  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels; Distortion
+  /// k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by row or a
+  /// 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next update that
+  /// names the property.
+  void SetCameraImageSize(int width, int height);
+  void GetCameraImageSize(int size[2]);
+  void SetFocalLength(double fx, double fy);
+  void GetFocalLength(double f[2]);
+  void SetPrincipalPoint(double cx, double cy);
+  void GetPrincipalPoint(double c[2]);
+  void SetDistortion(double k1, double k2, double p1, double p2, double k3);
+  void GetDistortion(double coefficients[5]);
+  void SetWorldToCamera(const double elements[16]);
+  void SetWorldToCamera(const double matrix[4][4]);
+  void GetWorldToCamera(double elements[16]);
+  ///@}
+
   /// The modification time includes the camera's.
   vtkMTimeType GetMTime() override;
 

@@ -15,7 +15,8 @@
  * Output: RGBA unsigned char vtkImageData of the camera's image size, in VTK row order. Rows are
  * computed in parallel with vtkSMPTools.
  *
- * The camera comes from SetCamera(), or, when none is set, from CalibrationFileName.
+ * The camera comes from SetCamera(), or, when none is set, from CalibrationFileName, or else from
+ * the panel camera (CameraImageSize, FocalLength, ..., WorldToCamera: the demo camera by default).
  */
 #ifndef vtkCatadioptricEnvironmentSource_h
 #define vtkCatadioptricEnvironmentSource_h
@@ -66,6 +67,26 @@ public:
   void SetMirrorParameter(int i, double value);
   int GetNumberOfMirrorParameters();
   double GetMirrorParameter(int i);
+  ///@}
+
+  ///@{
+  /// The camera used when no camera object and no CalibrationFileName are set (ParaView's
+  /// panel): the built-in demo camera's values (Data/calibration/demo-camera.yaml) until changed.
+  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels; Distortion
+  /// k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by row or a
+  /// 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next update that
+  /// names the property.
+  void SetCameraImageSize(int width, int height);
+  void GetCameraImageSize(int size[2]);
+  void SetFocalLength(double fx, double fy);
+  void GetFocalLength(double f[2]);
+  void SetPrincipalPoint(double cx, double cy);
+  void GetPrincipalPoint(double c[2]);
+  void SetDistortion(double k1, double k2, double p1, double p2, double k3);
+  void GetDistortion(double coefficients[5]);
+  void SetWorldToCamera(const double elements[16]);
+  void SetWorldToCamera(const double matrix[4][4]);
+  void GetWorldToCamera(double elements[16]);
   ///@}
 
   ///@{

@@ -61,6 +61,7 @@ void vtkCatadioptricRayTracer::SetCalibrationFileName(const char* fileName)
 }
 
 vtkCatadioptricCameraSlotMirrorMacro(vtkCatadioptricRayTracer);
+vtkCatadioptricCameraSlotPanelMacro(vtkCatadioptricRayTracer);
 vtkCatadioptricCameraSlotTrajectoryMacro(vtkCatadioptricRayTracer);
 
 const char* vtkCatadioptricRayTracer::GetCalibrationFileName()

@@ -28,8 +28,9 @@
  * them has Shadows on. A mesh without lighting is drawn unlit with the array ColorArrayName
  * (point or cell data) or Color, as the compositor draws it.
  *
- * The camera comes from SetCamera() or CalibrationFileName. The rays are back-projected once per
- * camera and sample count and kept; rays whose reflection cannot reach the meshes' bounding box
+ * The camera comes from SetCamera(), CalibrationFileName or else the panel camera (CameraImageSize,
+ * FocalLength, ..., WorldToCamera: the demo camera by default). The rays are back-projected once
+ * per camera and sample count and kept; rays whose reflection cannot reach the meshes' bounding box
  * are skipped. Work is split into bands of rows with vtkSMPTools.
  */
 #ifndef vtkCatadioptricRayTracer_h
@@ -81,6 +82,26 @@ public:
   void SetMirrorParameter(int i, double value);
   int GetNumberOfMirrorParameters();
   double GetMirrorParameter(int i);
+  ///@}
+
+  ///@{
+  /// The camera used when no camera object and no CalibrationFileName are set (ParaView's
+  /// panel): the built-in demo camera's values (Data/calibration/demo-camera.yaml) until changed.
+  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels; Distortion
+  /// k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by row or a
+  /// 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next update that
+  /// names the property.
+  void SetCameraImageSize(int width, int height);
+  void GetCameraImageSize(int size[2]);
+  void SetFocalLength(double fx, double fy);
+  void GetFocalLength(double f[2]);
+  void SetPrincipalPoint(double cx, double cy);
+  void GetPrincipalPoint(double c[2]);
+  void SetDistortion(double k1, double k2, double p1, double p2, double k3);
+  void GetDistortion(double coefficients[5]);
+  void SetWorldToCamera(const double elements[16]);
+  void SetWorldToCamera(const double matrix[4][4]);
+  void GetWorldToCamera(double elements[16]);
   ///@}
 
   ///@{

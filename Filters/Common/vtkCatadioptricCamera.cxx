@@ -206,6 +206,11 @@ bool vtkCatadioptricCamera::SetMirrorParameter(const char* key, double value)
   return this->SetMirrorParameter(key, std::vector<double>{ value });
 }
 
+bool vtkCatadioptricCamera::SetMirrorParameter(const char* key, const double matrix[4][4])
+{
+  return this->SetMirrorParameter(key, std::vector<double>(&matrix[0][0], &matrix[0][0] + 16));
+}
+
 std::vector<double> vtkCatadioptricCamera::GetMirrorParameter(const char* key)
 {
   const catar::MirrorType* t = Variant(this->MirrorType, this->MirrorParameters.size());
@@ -270,6 +275,11 @@ void vtkCatadioptricCamera::SetWorldToCameraElements(const double elements[16])
 {
   this->WorldToCamera->DeepCopy(elements);
   this->Modified();
+}
+
+void vtkCatadioptricCamera::SetWorldToCamera(const double matrix[4][4])
+{
+  this->SetWorldToCameraElements(&matrix[0][0]);
 }
 
 void vtkCatadioptricCamera::GetWorldToCameraElements(double elements[16])

@@ -115,6 +115,8 @@ public:
   /// empty vector for an unknown key.
   bool SetMirrorParameter(const char* key, const std::vector<double>& values);
   bool SetMirrorParameter(const char* key, double value);
+  /// A 4x4 key (mirror_to_camera, a quadric's matrix) as a matrix; from Python, a 4x4 numpy array.
+  bool SetMirrorParameter(const char* key, const double matrix[4][4]);
   std::vector<double> GetMirrorParameter(const char* key);
   ///@}
 
@@ -131,6 +133,8 @@ public:
   vtkMatrix4x4* GetWorldToCamera();
   /// The pose as 16 numbers, row-major (for ParaView and scripts).
   void SetWorldToCameraElements(const double elements[16]);
+  /// The pose as a 4x4 matrix (from Python, a 4x4 numpy array or nested lists).
+  void SetWorldToCamera(const double matrix[4][4]);
   void GetWorldToCameraElements(double elements[16]);
   /// Camera centre in world coordinates.
   void GetCameraPosition(double position[3]);

@@ -3,6 +3,7 @@
 #include "CalibrationIO.h"
 #include "CameraModel.h"
 #include "Mirror.h"
+#include "SceneDescription.h"
 #include "Trajectory.h"
 
 #include "vtkCatadioptricCamera.h"
@@ -11,9 +12,118 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
-vtkCatadioptricCameraSlot::vtkCatadioptricCameraSlot() = default;
+namespace
+{
+// The built-in demo camera (Data/calibration/demo-camera.yaml, the demo scene's), parsed once.
+const catar::CameraModel& DemoCamera()
+{
+  static const catar::CameraModel camera = catar::DemoScene().camera;
+  return camera;
+}
+
+template<std::size_t N>
+bool Assign(double (&to)[N], const double* from)
+{
+  if (std::equal(to, to + N, from))
+  {
+    return false;
+  }
+  std::copy(from, from + N, to);
+  return true;
+}
+}
+
+vtkCatadioptricCameraSlot::vtkCatadioptricCameraSlot()
+{
+  const catar::CameraModel& demo = DemoCamera();
+  this->PanelImageSize[0] = demo.intrinsics.width;
+  this->PanelImageSize[1] = demo.intrinsics.height;
+  this->PanelFocalLength[0] = demo.intrinsics.fx;
+  this->PanelFocalLength[1] = demo.intrinsics.fy;
+  this->PanelPrincipalPoint[0] = demo.intrinsics.cx;
+  this->PanelPrincipalPoint[1] = demo.intrinsics.cy;
+  const catar::Distortion& d = demo.distortion;
+  const double distortion[5] = { d.k1, d.k2, d.p1, d.p2, d.k3 };
+  std::copy(distortion, distortion + 5, this->PanelDistortion);
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      this->PanelWorldToCamera[4 * r + c] = demo.worldToCamera(r, c);
+    }
+  }
+}
+
 vtkCatadioptricCameraSlot::~vtkCatadioptricCameraSlot() = default;
+
+bool vtkCatadioptricCameraSlot::SetCameraImageSize(int width, int height)
+{
+  if (this->PanelImageSize[0] == width && this->PanelImageSize[1] == height)
+  {
+    return false;
+  }
+  this->PanelImageSize[0] = width;
+  this->PanelImageSize[1] = height;
+  this->PanelChanged = true;
+  return true;
+}
+
+bool vtkCatadioptricCameraSlot::SetFocalLength(double fx, double fy)
+{
+  const double f[2] = { fx, fy };
+  const bool changed = Assign(this->PanelFocalLength, f);
+  this->PanelChanged = this->PanelChanged || changed;
+  return changed;
+}
+
+bool vtkCatadioptricCameraSlot::SetPrincipalPoint(double cx, double cy)
+{
+  const double c[2] = { cx, cy };
+  const bool changed = Assign(this->PanelPrincipalPoint, c);
+  this->PanelChanged = this->PanelChanged || changed;
+  return changed;
+}
+
+bool vtkCatadioptricCameraSlot::SetDistortion(const double coefficients[5])
+{
+  const bool changed = Assign(this->PanelDistortion, coefficients);
+  this->PanelChanged = this->PanelChanged || changed;
+  return changed;
+}
+
+bool vtkCatadioptricCameraSlot::SetWorldToCamera(const double elements[16])
+{
+  const bool changed = Assign(this->PanelWorldToCamera, elements);
+  this->PanelChanged = this->PanelChanged || changed;
+  return changed;
+}
+
+void vtkCatadioptricCameraSlot::GetCameraImageSize(int size[2]) const
+{
+  std::copy(this->PanelImageSize, this->PanelImageSize + 2, size);
+}
+
+void vtkCatadioptricCameraSlot::GetFocalLength(double f[2]) const
+{
+  std::copy(this->PanelFocalLength, this->PanelFocalLength + 2, f);
+}
+
+void vtkCatadioptricCameraSlot::GetPrincipalPoint(double c[2]) const
+{
+  std::copy(this->PanelPrincipalPoint, this->PanelPrincipalPoint + 2, c);
+}
+
+void vtkCatadioptricCameraSlot::GetDistortion(double coefficients[5]) const
+{
+  std::copy(this->PanelDistortion, this->PanelDistortion + 5, coefficients);
+}
+
+void vtkCatadioptricCameraSlot::GetWorldToCamera(double elements[16]) const
+{
+  std::copy(this->PanelWorldToCamera, this->PanelWorldToCamera + 16, elements);
+}
 
 bool vtkCatadioptricCameraSlot::SetCamera(vtkCatadioptricCamera* camera)
 {
@@ -208,7 +318,7 @@ vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolveMirror(std::string& err
     const std::string problem = catar::ValidateMirror(model.mirror);
     if (!problem.empty())
     {
-      error = "MirrorType '" + this->MirrorType + "' with MirrorParameters: " + problem;
+      error = "Mirror Type '" + this->MirrorType + "' with Mirror Parameters: " + problem;
       return nullptr;
     }
     if (!this->MirrorCamera)
@@ -230,8 +340,7 @@ vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolveBase(std::string& error
   }
   if (this->FileName.empty())
   {
-    error = "No camera: call SetCamera() or set CalibrationFileName.";
-    return nullptr;
+    return this->ResolvePanel(error);
   }
   if (!this->FileCamera || this->LoadedFileName != this->FileName)
   {
@@ -239,7 +348,7 @@ vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolveBase(std::string& error
     std::string why;
     if (!catar::LoadCalibration(this->FileName, model, why))
     {
-      error = "Cannot load the calibration: " + why;
+      error = "Calibration File Name: cannot load the calibration: " + why;
       return nullptr;
     }
     this->FileCamera = vtkSmartPointer<vtkCatadioptricCamera>::New();
@@ -247,4 +356,76 @@ vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolveBase(std::string& error
     this->LoadedFileName = this->FileName;
   }
   return this->FileCamera;
+}
+
+vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolvePanel(std::string& error)
+{
+  if (this->PanelCamera && !this->PanelChanged)
+  {
+    return this->PanelCamera;
+  }
+  // Each value is checked here so that the error names the panel property to change.
+  std::ostringstream why;
+  const auto finite = [](const double* v, int n) {
+    return std::all_of(v, v + n, [](double x) { return std::isfinite(x); });
+  };
+  const int* size = this->PanelImageSize;
+  if (size[0] <= 0 || size[1] <= 0 || size[0] > catar::kMaxImageSide ||
+    size[1] > catar::kMaxImageSide ||
+    static_cast<long long>(size[0]) * size[1] > catar::kMaxImagePixels)
+  {
+    why << "Camera Image Size must be positive and at most " << catar::kMaxImageSide
+        << " pixels a side and " << catar::kMaxImagePixels << " pixels in all (it is " << size[0]
+        << " x " << size[1] << ").";
+  }
+  else if (!finite(this->PanelFocalLength, 2) ||
+    !(this->PanelFocalLength[0] > 0.0 && this->PanelFocalLength[1] > 0.0))
+  {
+    why << "Focal Length must be two positive numbers of pixels (it is "
+        << this->PanelFocalLength[0] << ", " << this->PanelFocalLength[1] << ").";
+  }
+  else if (!finite(this->PanelPrincipalPoint, 2))
+  {
+    why << "Principal Point must be finite.";
+  }
+  else if (!finite(this->PanelDistortion, 5))
+  {
+    why << "Distortion must be finite.";
+  }
+  if (!why.str().empty())
+  {
+    error = why.str();
+    return nullptr;
+  }
+  catar::CameraModel model = DemoCamera();
+  model.intrinsics.width = size[0];
+  model.intrinsics.height = size[1];
+  model.intrinsics.fx = this->PanelFocalLength[0];
+  model.intrinsics.fy = this->PanelFocalLength[1];
+  model.intrinsics.cx = this->PanelPrincipalPoint[0];
+  model.intrinsics.cy = this->PanelPrincipalPoint[1];
+  model.intrinsics.skew = 0.0;
+  const double* d = this->PanelDistortion;
+  model.distortion = catar::Distortion{ d[0], d[1], d[2], d[3], d[4] };
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      model.worldToCamera(r, c) = this->PanelWorldToCamera[4 * r + c];
+    }
+  }
+  const std::string problem = model.Validate();
+  if (!problem.empty())
+  {
+    // What is left for Validate is the pose (the mirror is the demo's until Mirror Type is set).
+    error = "World To Camera: " + problem + " (a rigid transform, 16 numbers row by row).";
+    return nullptr;
+  }
+  if (!this->PanelCamera)
+  {
+    this->PanelCamera = vtkSmartPointer<vtkCatadioptricCamera>::New();
+  }
+  this->PanelCamera->SetModel(model);
+  this->PanelChanged = false;
+  return this->PanelCamera;
 }

@@ -3,9 +3,12 @@
  * @brief   where a filter or source gets its camera: an object, or a calibration file
  *
  * Not a vtkObject: a member of the algorithms that need a camera
- * (vtkCatadioptricProjection, vtkCatadioptricEnvironmentSource). The camera object takes
+ * (vtkCatadioptricProjection, vtkCatadioptricEnvironmentSource, ...). The camera object takes
  * precedence; otherwise the calibration file is loaded, once per file name, into a private
- * camera. C++ only (not wrapped).
+ * camera; with neither, the camera is made from the panel's values (image size, focal length,
+ * principal point, distortion, world-to-camera), which are the built-in demo camera's
+ * (Data/calibration/demo-camera.yaml) until changed, so a ParaView pipeline draws on its first
+ * Apply. C++ only (not wrapped).
  */
 #ifndef vtkCatadioptricCameraSlot_h
 #define vtkCatadioptricCameraSlot_h
@@ -39,6 +42,20 @@ public:
   bool SetCalibrationFileName(const char* fileName);
   /// The file name, or null when none is set.
   const char* GetCalibrationFileName() const;
+
+  /// The panel's camera, used without a camera object and a calibration file; setters return true
+  /// when they changed something. Values are checked when the camera is made (Resolve), where a
+  /// bad one is an error that names the panel property.
+  bool SetCameraImageSize(int width, int height);
+  bool SetFocalLength(double fx, double fy);
+  bool SetPrincipalPoint(double cx, double cy);
+  bool SetDistortion(const double coefficients[5]); ///< k1, k2, p1, p2, k3 (OpenCV's order)
+  bool SetWorldToCamera(const double elements[16]); ///< row-major
+  void GetCameraImageSize(int size[2]) const;
+  void GetFocalLength(double f[2]) const;
+  void GetPrincipalPoint(double c[2]) const;
+  void GetDistortion(double coefficients[5]) const;
+  void GetWorldToCamera(double elements[16]) const;
 
   /// The camera object's modification time (0 without one).
   vtkMTimeType GetCameraMTime() const;
@@ -85,6 +102,16 @@ private:
   vtkCatadioptricCamera* TimedCameraFrom = nullptr;
   vtkMTimeType TimedCameraBase = 0;
   double TimedCameraTime = 0.0;
+
+  vtkCatadioptricCamera* ResolvePanel(std::string& error);
+
+  int PanelImageSize[2];
+  double PanelFocalLength[2];
+  double PanelPrincipalPoint[2];
+  double PanelDistortion[5];
+  double PanelWorldToCamera[16];
+  bool PanelChanged = true;
+  vtkSmartPointer<vtkCatadioptricCamera> PanelCamera;
 
   std::string MirrorType;
   std::vector<double> MirrorParameters;
@@ -139,6 +166,74 @@ private:
   }
 
 /**
+ * Defines, in a .cxx, the panel camera of an algorithm that holds a
+ * `vtkCatadioptricCameraSlot CameraSlot` (part of vtkCatadioptricCameraSlotMacro):
+ * SetCameraImageSize, SetFocalLength, SetPrincipalPoint, SetDistortion, SetWorldToCamera (16
+ * numbers or 4x4) and their getters.
+ */
+#define vtkCatadioptricCameraSlotPanelMacro(thisClass)                                             \
+  void thisClass::SetCameraImageSize(int width, int height)                                        \
+  {                                                                                                \
+    if (this->CameraSlot.SetCameraImageSize(width, height))                                        \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void thisClass::GetCameraImageSize(int size[2])                                                  \
+  {                                                                                                \
+    this->CameraSlot.GetCameraImageSize(size);                                                     \
+  }                                                                                                \
+  void thisClass::SetFocalLength(double fx, double fy)                                             \
+  {                                                                                                \
+    if (this->CameraSlot.SetFocalLength(fx, fy))                                                   \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void thisClass::GetFocalLength(double f[2])                                                      \
+  {                                                                                                \
+    this->CameraSlot.GetFocalLength(f);                                                            \
+  }                                                                                                \
+  void thisClass::SetPrincipalPoint(double cx, double cy)                                          \
+  {                                                                                                \
+    if (this->CameraSlot.SetPrincipalPoint(cx, cy))                                                \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void thisClass::GetPrincipalPoint(double c[2])                                                   \
+  {                                                                                                \
+    this->CameraSlot.GetPrincipalPoint(c);                                                         \
+  }                                                                                                \
+  void thisClass::SetDistortion(double k1, double k2, double p1, double p2, double k3)             \
+  {                                                                                                \
+    const double d[5] = { k1, k2, p1, p2, k3 };                                                    \
+    if (this->CameraSlot.SetDistortion(d))                                                         \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void thisClass::GetDistortion(double d[5])                                                       \
+  {                                                                                                \
+    this->CameraSlot.GetDistortion(d);                                                             \
+  }                                                                                                \
+  void thisClass::SetWorldToCamera(const double elements[16])                                      \
+  {                                                                                                \
+    if (this->CameraSlot.SetWorldToCamera(elements))                                               \
+    {                                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void thisClass::SetWorldToCamera(const double matrix[4][4])                                      \
+  {                                                                                                \
+    this->SetWorldToCamera(&matrix[0][0]);                                                         \
+  }                                                                                                \
+  void thisClass::GetWorldToCamera(double elements[16])                                            \
+  {                                                                                                \
+    this->CameraSlot.GetWorldToCamera(elements);                                                   \
+  }
+
+/**
  * Defines, in a .cxx, SetTrajectoryFileName and GetTrajectoryFileName of an algorithm that holds
  * a `vtkCatadioptricCameraSlot CameraSlot`.
  */
@@ -159,7 +254,8 @@ private:
  * Defines, in a .cxx, the camera members of an algorithm that holds a
  * `vtkCatadioptricCameraSlot CameraSlot`: SetCamera, GetCamera, SetCalibrationFileName,
  * GetCalibrationFileName, the mirror override (SetMirrorType, SetNumberOfMirrorParameters,
- * SetMirrorParameter and their getters), GetMTime (including the camera's) and
+ * SetMirrorParameter and their getters), the panel camera (vtkCatadioptricCameraSlotPanelMacro),
+ * GetMTime (including the camera's) and
  * ResolveCamera(outInfo) (the camera at the time outInfo asks for; reports failures with
  * vtkErrorMacro). Algorithms that follow a trajectory add vtkCatadioptricCameraSlotTrajectoryMacro.
  */
@@ -192,8 +288,9 @@ private:
     const vtkMTimeType camera = this->CameraSlot.GetCameraMTime();                                 \
     return own > camera ? own : camera;                                                            \
   }                                                                                                \
-  vtkCatadioptricCameraSlotMirrorMacro(thisClass) vtkCatadioptricCamera* thisClass::ResolveCamera( \
-    vtkInformation* outInfo)                                                                       \
+  vtkCatadioptricCameraSlotMirrorMacro(thisClass) vtkCatadioptricCameraSlotPanelMacro(thisClass)   \
+    vtkCatadioptricCamera*                                                                         \
+    thisClass::ResolveCamera(vtkInformation* outInfo)                                              \
   {                                                                                                \
     std::string error;                                                                             \
     vtkCatadioptricCamera* camera = this->CameraSlot.Resolve(error, outInfo);                      \

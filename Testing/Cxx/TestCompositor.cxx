@@ -1374,9 +1374,15 @@ TEST(vtkCatadioptricCompositor, AnnouncesTheCameraImageSizeWithoutAFrame)
   compositor->GetOutput()->GetDimensions(dims);
   EXPECT_EQ(dims[0], 166);
   EXPECT_EQ(dims[1], 131);
-  // No camera: no size is announced (the projection reports the missing camera when it runs).
+  // No camera object or file: the panel camera's size (the demo camera's, 1328 x 1048); a bad
+  // panel camera announces no size (the projection reports it when it runs).
   vtkNew<vtkCatadioptricProjection> bare;
   bare->SetInputConnection(sphere->GetOutputPort());
+  bare->UpdateInformation();
+  ASSERT_TRUE(bare->GetOutputInformation(0)->Has(vtkCatadioptricCamera::IMAGE_SIZE()));
+  EXPECT_EQ(bare->GetOutputInformation(0)->Get(vtkCatadioptricCamera::IMAGE_SIZE())[0], 1328);
+  EXPECT_EQ(bare->GetOutputInformation(0)->Get(vtkCatadioptricCamera::IMAGE_SIZE())[1], 1048);
+  bare->SetCameraImageSize(-1, 1048);
   bare->UpdateInformation();
   EXPECT_FALSE(bare->GetOutputInformation(0)->Has(vtkCatadioptricCamera::IMAGE_SIZE()));
 }

@@ -32,6 +32,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <set>
@@ -386,16 +388,127 @@ TEST(vtkCatadioptricProjection, BackFaceCullingDropsExactlyTheCellsFacingAway)
   std::printf("[ culling  ] %d of %d visible cells face the viewer\n", kept, visible);
 }
 
+// Without a camera object or a calibration file, the projection uses the panel camera: the
+// demo camera (as Data/calibration/demo-camera.yaml describes it) until its properties change, and
+// then a camera with those values; bad values are errors that name the panel property.
+TEST(vtkCatadioptricProjection, PanelCameraIsTheDemoCameraUntilChanged)
+{
+  auto sphere = SphereAt(0.06, -0.32, 0.92, 0.03);
+  auto pixelsOf = [&](vtkCatadioptricProjection* p) {
+    p->SetInputData(sphere);
+    p->Update();
+    vtkDataArray* px = p->GetOutput()->GetPointData()->GetArray("ImageCoordinates");
+    std::vector<double> values;
+    for (vtkIdType i = 0; px && i < px->GetNumberOfTuples(); ++i)
+    {
+      values.push_back(px->GetComponent(i, 0));
+      values.push_back(px->GetComponent(i, 1));
+    }
+    return values;
+  };
+  vtkNew<vtkCatadioptricProjection> panel;
+  vtkNew<vtkCatadioptricProjection> file;
+  file->SetCalibrationFileName(CATAR_SOURCE_DIR "/Data/calibration/demo-camera.yaml");
+  const std::vector<double> fromPanel = pixelsOf(panel);
+  ASSERT_FALSE(fromPanel.empty());
+  EXPECT_EQ(fromPanel, pixelsOf(file));
+  int size[2];
+  double f[2], c[2], pose[16];
+  panel->GetCameraImageSize(size);
+  panel->GetFocalLength(f);
+  panel->GetPrincipalPoint(c);
+  panel->GetWorldToCamera(pose);
+  EXPECT_EQ(size[0], 1328);
+  EXPECT_EQ(size[1], 1048);
+  EXPECT_EQ(f[0], 1000.0);
+  EXPECT_EQ(c[1], 523.5);
+  EXPECT_EQ(pose[7], 1.0); // the demo camera sits 1 m behind the world's origin along y
+
+  // Changed values: the same pixels as a camera object with those values. Halving the focal
+  // length about the principal point halves each pixel's offset from it (no distortion).
+  panel->SetFocalLength(500, 500);
+  const std::vector<double> half = pixelsOf(panel);
+  ASSERT_EQ(half.size(), fromPanel.size());
+  for (std::size_t i = 0; i < half.size(); i += 2)
+  {
+    EXPECT_NEAR(half[i] - 663.5, 0.5 * (fromPanel[i] - 663.5), 1e-9);
+    EXPECT_NEAR(half[i + 1] - 523.5, 0.5 * (fromPanel[i + 1] - 523.5), 1e-9);
+  }
+  vtkNew<vtkCatadioptricCamera> object;
+  ASSERT_TRUE(object->Load(CATAR_SOURCE_DIR "/Data/calibration/demo-camera.yaml"));
+  object->SetFocalLength(500, 500);
+  vtkNew<vtkCatadioptricProjection> withObject;
+  withObject->SetCamera(object);
+  EXPECT_EQ(half, pixelsOf(withObject));
+  // A 4x4 pose and its 16 numbers are the same pose.
+  double matrix[4][4];
+  std::memcpy(matrix, pose, sizeof(pose));
+  matrix[0][3] = 0.05;
+  panel->SetWorldToCamera(matrix);
+  double back[16];
+  panel->GetWorldToCamera(back);
+  EXPECT_EQ(back[3], 0.05);
+  EXPECT_EQ(back[7], 1.0);
+
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(panel);
+  struct Case
+  {
+    std::function<void()> set;
+    const char* property;
+  };
+  double skew[16];
+  std::memcpy(skew, pose, sizeof(pose));
+  skew[1] = 0.5; // not a rotation
+  const std::vector<Case> cases = {
+    { [&] { panel->SetFocalLength(-1, 500); }, "Focal Length" },
+    { [&] { panel->SetFocalLength(500, std::nan("")); }, "Focal Length" },
+    { [&] { panel->SetCameraImageSize(100000, 10); }, "Camera Image Size" },
+    { [&] { panel->SetPrincipalPoint(std::nan(""), 0); }, "Principal Point" },
+    { [&] { panel->SetDistortion(0, 0, std::numeric_limits<double>::infinity(), 0, 0); },
+      "Distortion" },
+    { [&] { panel->SetWorldToCamera(skew); }, "World To Camera" },
+    { [&] { panel->SetMirrorType("sphere"); }, "Mirror Type" }, // no parameters
+  };
+  int expected = 0;
+  for (const Case& k : cases)
+  {
+    // Each case from a good camera.
+    panel->SetCameraImageSize(1328, 1048);
+    panel->SetFocalLength(1000, 1000);
+    panel->SetPrincipalPoint(663.5, 523.5);
+    panel->SetDistortion(0, 0, 0, 0, 0);
+    panel->SetWorldToCamera(pose);
+    panel->SetMirrorType("");
+    EXPECT_FALSE(pixelsOf(panel).empty());
+    EXPECT_EQ(errors->Count, expected) << errors->Last;
+    k.set();
+    EXPECT_TRUE(pixelsOf(panel).empty()) << k.property;
+    EXPECT_EQ(errors->Count, ++expected) << k.property;
+    EXPECT_NE(errors->Last.find(std::string(": ") + k.property), std::string::npos) << errors->Last;
+    EXPECT_EQ(errors->Last.find("Set"), std::string::npos) << errors->Last; // no C++ method
+  }
+}
+
 TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
 {
   vtkNew<vtkCatadioptricProjection> proj;
   vtkNew<catar_test::ErrorCounter> errors;
   errors->Watch(proj);
   proj->SetInputData(SphereAt(0, -0.3, 1, 0.05));
-  // No camera.
+  // No camera object and no file: the panel camera, which is the demo camera until changed; a
+  // bad panel value is an error that names the panel property.
+  proj->Update();
+  EXPECT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_GT(proj->GetOutput()->GetNumberOfPoints(), 0);
+  proj->SetCameraImageSize(0, 480);
   proj->Update();
   EXPECT_EQ(errors->Count, 1);
-  EXPECT_NE(errors->Last.find("No camera"), std::string::npos) << errors->Last;
+  EXPECT_EQ(proj->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_NE(errors->Last.find(": Camera Image Size must be positive"), std::string::npos) << errors->Last;
+  proj->SetCameraImageSize(1328, 1048);
+  proj->Update();
+  EXPECT_EQ(errors->Count, 1) << errors->Last;
   // An invalid camera (camera inside the mirror).
   vtkNew<vtkCatadioptricCamera> cam;
   catar_test::SetSmallDemoCamera(cam);

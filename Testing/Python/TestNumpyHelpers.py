@@ -106,6 +106,36 @@ try:
 except ValueError:
     pass
 
+# Poses and 4x4 mirror keys as 4x4 numpy arrays: the same as their 16 numbers row by row.
+pose = np.array([[0.0, -1.0, 0.0, 0.02], [0.0, 0.0, -1.0, 1.0], [1.0, 0.0, 0.0, 0.14],
+                 [0.0, 0.0, 0.0, 1.0]])
+flat, square = car.vtkCatadioptricCamera(), car.vtkCatadioptricCamera()
+flat.SetWorldToCameraElements(list(pose.ravel()))
+square.SetWorldToCamera(pose)
+got = [0.0] * 16
+square.GetWorldToCameraElements(got)
+check(got == list(pose.ravel()), "SetWorldToCamera(4x4 numpy): %s" % got)
+check(square.GetWorldToCamera().GetElement(0, 3) == 0.02, "the 4x4 pose as vtkMatrix4x4")
+tilt = np.eye(4)
+tilt[1:3, 1:3] = [[0.9975640502598242, -0.0697564737441253], [0.0697564737441253, 0.9975640502598242]]
+tilt[2, 3] = 0.05
+for c in (flat, square):
+    check(c.SetMirrorType("hyperboloid"), "hyperboloid")
+check(square.SetMirrorParameter("mirror_to_camera", tilt), "mirror_to_camera as 4x4 numpy")
+check(flat.SetMirrorParameter("mirror_to_camera", list(tilt.ravel())), "mirror_to_camera as 16")
+check(square.GetMirrorParameter("mirror_to_camera") == flat.GetMirrorParameter("mirror_to_camera")
+      and flat.GetMirrorParameter("mirror_to_camera")[11] == 0.05, "the same mirror_to_camera")
+try:
+    square.SetWorldToCamera(np.eye(3))
+    check(False, "SetWorldToCamera accepted a 3x3")
+except TypeError:
+    pass
+projection = car.vtkCatadioptricProjection()
+projection.SetWorldToCamera(pose)
+got = [0.0] * 16
+projection.GetWorldToCamera(got)
+check(got == list(pose.ravel()), "vtkCatadioptricProjection.SetWorldToCamera(4x4 numpy)")
+
 # render(): the scene renderer's frame, top row first.
 frame = car.render()
 check(frame.shape == (1048, 1328, 4) and frame.dtype == np.uint8, "render() shape %s" % (frame.shape,))

@@ -9,6 +9,7 @@ from paraview import servermanager
 from paraview import simple
 
 plugin = sys.argv[1]
+SOURCE_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 CALIBRATION = """%YAML:1.0
 ---
@@ -41,12 +42,105 @@ def check_menu():
             hints = prototype.GetHints()
             menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
             assert menu is not None and menu.GetAttribute("category") == "CatadioptricAR", name
-    print("menu: the 8 proxies under CatadioptricAR")
+    print("menu: the %d proxies under CatadioptricAR" % sum(len(p) for p in names.values()))
+
+
+def check_first_apply():
+    """With every property at its default (no calibration file), the pipeline draws through the
+    demo camera; the images show in their own colours; the camera's properties are grouped; a bad
+    panel value is an error that names the panel property."""
+    from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+    ball = simple.Sphere(Center=[0.06, -0.32, 0.92], Radius=0.03, ThetaResolution=32,
+                         PhiResolution=16)
+    projection = simple.CatadioptricProjection(Input=ball)
+    sort = simple.CatadioptricPainterSort(Input=projection)
+    compositor = simple.CatadioptricCompositor(Input=[sort], Frame=None)
+    compositor.Color = [1.0, 0.0, 1.0]
+    compositor.ColorArrayName = ""
+    compositor.BackgroundColor = [0.2, 0.6, 0.1, 1.0]
+    compositor.UpdatePipeline()
+    image = servermanager.Fetch(compositor)
+    assert image.GetDimensions() == (1328, 1048, 1), image.GetDimensions()
+    rgba = image.GetPointData().GetScalars()
+    # The ball is where the demo camera (the file that describes it, read by the Python bindings)
+    # projects its centre.
+    import catadioptricar as car
+    camera = car.vtkCatadioptricCamera()
+    assert camera.Load(os.path.join(SOURCE_DIR, "Data", "calibration", "demo-camera.yaml"))
+    px, mp = [0.0, 0.0], [0.0, 0.0, 0.0]
+    assert camera.ProjectWorldPoint([0.06, -0.32, 0.92], px, mp) == 0
+    x, y = int(round(px[0])), int(round(px[1]))
+    assert rgba.GetTuple4((1048 - 1 - y) * 1328 + x) == (255.0, 0.0, 255.0, 255.0), px
+    ballPixels = sum(1 for i in range(rgba.GetNumberOfTuples())
+                     if rgba.GetTuple4(i) == (255.0, 0.0, 255.0, 255.0))
+    assert 20 < ballPixels < 1328 * 1048 // 20, ballPixels
+
+    # True colours: Map Scalars off, and the render view shows the background's own green.
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [400, 300]
+    view.OrientationAxesVisibility = 0
+    view.Background = [0.0, 0.0, 0.0]
+    view.UseColorPaletteForBackground = 0
+    display = simple.Show(compositor, view)
+    assert display.GetXMLName() == "CatadioptricImageRepresentation", display.GetXMLName()
+    assert display.MapScalars == 0 and display.ColorArrayName[1] == rgba.GetName(), (
+        display.MapScalars, display.ColorArrayName)
+    view.CameraParallelProjection = 1
+    simple.ResetCamera(view)
+
+    def green_in_view():
+        """Pixels of the view that show the background's own green (51, 153, 25)."""
+        with tempfile.TemporaryDirectory() as d:
+            shot = os.path.join(d, "view.png")
+            simple.SaveScreenshot(shot, view, ImageResolution=[400, 300])
+            from vtkmodules.vtkIOImage import vtkPNGReader
+            reader = vtkPNGReader()
+            reader.SetFileName(shot)
+            reader.Update()
+            pixels = reader.GetOutput().GetPointData().GetScalars()
+            return sum(1 for i in range(pixels.GetNumberOfTuples())
+                       if all(abs(a - b) <= 2 for a, b in zip(pixels.GetTuple3(i), (51, 153, 25))))
+
+    green = green_in_view()
+    # The image covers about a third of the view (ResetCamera leaves a margin).
+    assert green > 0.25 * 400 * 300, green
+    # Through a colour map (Map Scalars on) the green is gone: the check sees the difference.
+    display.MapScalars = 1
+    mapped = green_in_view()
+    assert mapped < 0.01 * green, (mapped, green)
+    simple.Delete(display)
+    simple.Delete(view)
+
+    # The camera's properties in groups.
+    labels = [projection.SMProxy.GetPropertyGroup(i).GetXMLLabel()
+              for i in range(projection.SMProxy.GetNumberOfPropertyGroups())]
+    for label in ("Calibration file", "Intrinsics (without a calibration file)", "Mirror",
+                  "Pose (without a calibration file)", "Trajectory"):
+        assert label in labels, (label, labels)
+
+    # A bad panel value: an error that names the property, never a C++ method.
+    messages = vtkStringOutputWindow()
+    previous = vtkOutputWindow.GetInstance()
+    vtkOutputWindow.SetInstance(messages)
+    try:
+        projection.FocalLength = [-5.0, 1000.0]
+        projection.UpdatePipeline()
+    finally:
+        vtkOutputWindow.SetInstance(previous)
+    text = messages.GetOutput()
+    assert "Focal Length must be two positive numbers" in text and "Set" not in text.split(
+        "Focal Length")[1], text
+    projection.FocalLength = [1000.0, 1000.0]
+    for proxy in (compositor, sort, projection, ball):
+        simple.Delete(proxy)
+    print("first Apply: the ball through the demo camera, %d pixels; %d view pixels in the image's "
+          "own green (%d through a colour map)" % (ballPixels, green, mapped))
 
 
 def main():
     simple.LoadPlugin(plugin, remote=False)
     check_menu()
+    check_first_apply()
     # The plugin's proxies are now in paraview.simple, named after their labels.
     Sphere = simple.Sphere
     CatadioptricProjection = simple.CatadioptricProjection
@@ -185,9 +279,8 @@ def main():
         scene.UpdateAnimationUsingDataTimeSteps()
         view = simple.CreateView("RenderView")
         display = simple.Show(compositor, view)
-        # Its true colours (RGBA, no colour map).
-        simple.ColorBy(display, ("POINTS", pixels.GetName()))
-        display.MapScalars = 0
+        # In its true colours (RGBA, no colour map) by default.
+        assert display.MapScalars == 0
         view.CameraParallelProjection = 1
         simple.ResetCamera(view)
         frames = os.path.join(d, "frame.png")
