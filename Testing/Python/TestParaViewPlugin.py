@@ -137,10 +137,38 @@ def check_first_apply():
           "own green (%d through a colour map)" % (ballPixels, green, mapped))
 
 
+def check_colour_arrays():
+    """The compositor's colour array is chosen from its meshes' arrays: after Catadioptric
+    Lighting the list has its Colors (the default stays Colors); "(none: Color)" draws the solid
+    Color."""
+    ball = simple.Sphere(Center=[0.06, -0.32, 0.92], Radius=0.03)
+    projection = simple.CatadioptricProjection(Input=ball)
+    lighting = simple.CatadioptricLighting(Input=projection)
+    lighting.UpdatePipeline()
+    compositor = simple.CatadioptricCompositor(Input=[lighting], Frame=None)
+    domain = compositor.GetProperty("ColorArrayName").SMProperty.FindDomain("vtkSMArrayListDomain")
+    names = [domain.GetString(i) for i in range(domain.GetNumberOfStrings())]
+    assert "Colors" in names and "(none: Color)" in names, names
+    assert "WorldToCamera" not in names, names  # field data is no colour
+    assert compositor.ColorArrayName == "Colors", compositor.ColorArrayName
+    compositor.ColorArrayName = "(none: Color)"
+    compositor.Color = [0.0, 1.0, 0.0]
+    compositor.UpdatePipeline()
+    rgba = servermanager.Fetch(compositor).GetPointData().GetScalars()
+    green = sum(1 for i in range(rgba.GetNumberOfTuples())
+                if rgba.GetTuple4(i) == (0.0, 255.0, 0.0, 255.0))
+    assert green > 20, green
+    for proxy in (compositor, lighting, projection, ball):
+        simple.Delete(proxy)
+    print("colour arrays: %d to choose from; the solid colour drawn on %d pixels"
+          % (len(names), green))
+
+
 def main():
     simple.LoadPlugin(plugin, remote=False)
     check_menu()
     check_first_apply()
+    check_colour_arrays()
     # The plugin's proxies are now in paraview.simple, named after their labels.
     Sphere = simple.Sphere
     CatadioptricProjection = simple.CatadioptricProjection
