@@ -192,8 +192,12 @@ struct vtkCatadioptricSceneRenderer::Internals
     vtkSmartPointer<vtkTransform> transform;
     catar::Mat4 baseInverse;
     catar::Mat4 current;
+    vtkSmartPointer<vtkTransformPolyDataFilter> mover; // the object's mesh, moved
   };
   std::vector<Moving> MovingObjects;
+  // Every object's mesh as built (world coordinates, at its own placement) and its name.
+  std::vector<vtkSmartPointer<vtkPolyData>> ObjectMeshes;
+  std::vector<std::string> ObjectNames;
   // Pose from markers: the board, the still background's pixels (top row first) for an image
   // background, and the last estimation.
   bool UseMarkers = false;
@@ -337,6 +341,8 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   Internals& in = *this->Internal;
   in.Loaded = false;
   in.Error.clear();
+  in.ObjectMeshes.clear();
+  in.ObjectNames.clear();
   std::fill(in.Times, in.Times + kNumberOfStages, 0.0);
   const std::string name = this->SceneFileName ? this->SceneFileName : "";
   auto t0 = Clock::now();
@@ -602,6 +608,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     movers[g] = vtkSmartPointer<vtkTransformPolyDataFilter>::New();
     movers[g]->SetTransform(m.transform);
     movers[g]->SetInputData(groups[g]);
+    m.mover = movers[g];
     in.MovingObjects.push_back(m);
   }
   const bool shadows = lit && scene.lighting.shadows;
@@ -679,6 +686,13 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     {
       in.Tracer->SetMeshLighting(static_cast<int>(g), in.Lightings.back());
     }
+  }
+  in.ObjectMeshes = meshes;
+  for (const catar::SceneObject& o : scene.objects)
+  {
+    in.ObjectNames.push_back(!o.name.empty() ? o.name
+        : !o.file.empty()                    ? vtksys::SystemTools::GetFilenameName(o.file)
+                                             : o.type);
   }
   auto t2 = Clock::now();
   in.Times[1] = Seconds(t1, t2);
@@ -1049,6 +1063,35 @@ double vtkCatadioptricSceneRenderer::GetStageTime(int stage)
 vtkIdType vtkCatadioptricSceneRenderer::GetNumberOfTriangles()
 {
   return this->Internal->Triangles;
+}
+
+int vtkCatadioptricSceneRenderer::GetNumberOfObjects()
+{
+  return static_cast<int>(this->Internal->ObjectMeshes.size());
+}
+
+const char* vtkCatadioptricSceneRenderer::GetObjectName(int object)
+{
+  const auto& names = this->Internal->ObjectNames;
+  return object >= 0 && object < static_cast<int>(names.size()) ? names[object].c_str() : "";
+}
+
+vtkPolyData* vtkCatadioptricSceneRenderer::GetObjectMesh(int object)
+{
+  Internals& in = *this->Internal;
+  if (object < 0 || object >= static_cast<int>(in.ObjectMeshes.size()))
+  {
+    return nullptr;
+  }
+  for (Internals::Moving& m : in.MovingObjects)
+  {
+    if (m.object == static_cast<std::size_t>(object))
+    {
+      m.mover->Update(); // placed for the current frame (ApplyFrame set its transform)
+      return m.mover->GetOutput();
+    }
+  }
+  return in.ObjectMeshes[object];
 }
 
 const char* vtkCatadioptricSceneRenderer::GetMeshReport()

@@ -33,6 +33,7 @@ class vtkCatadioptricLighting;
 class vtkCatadioptricProjection;
 class vtkImageData;
 class vtkLightCollection;
+class vtkPolyData;
 
 class CATADIOPTRICARSCENE_EXPORT vtkCatadioptricSceneRenderer : public vtkObject
 {
@@ -202,6 +203,17 @@ public:
 
   /// Number of triangles in the scene's meshes.
   vtkIdType GetNumberOfTriangles();
+
+  ///@{
+  /// The scene's objects as the last LoadScene() built them, one per entry of its `objects`, in
+  /// order: how many; a name (the object's `name`, else its mesh file's name, else its type); and
+  /// its triangle mesh in world coordinates (remeshed as drawn, with the "Colors" cell array),
+  /// placed for the frame set up last (a keyframed object moved there). "" and null for an object
+  /// out of range. The meshes are the renderer's own: copy them before changing them.
+  int GetNumberOfObjects();
+  const char* GetObjectName(int object);
+  vtkPolyData* GetObjectMesh(int object);
+  ///@}
 
   /// The last error message ("" if none).
   const char* GetLastError();

@@ -46,6 +46,25 @@ def build(calib):
     return proxies, [compositor, tracer]
 
 
+# A scene for the scene reader, beside the calibration (camera.yaml): two frames.
+SCENE = """camera: camera.yaml
+sequence: { frames: 2, fps: 10 }
+background: { type: color, color: [ 0.1, 0.1, 0.1 ] }
+objects:
+  - { type: sphere, radius: 0.03, resolution: 8, translate: [ 0.06, -0.32, 0.92 ] }
+"""
+
+
+def add_scene_reader(folder, proxies, sinks):
+    """The scene reader, a source and a sink (its image is checked as the others')."""
+    scene = folder + "/scene.yaml"
+    with open(scene, "w") as f:
+        f.write(SCENE)
+    reader = simple.CatadioptricARSceneReader(FileName=scene)
+    proxies["scene"] = reader
+    sinks.append(reader)
+
+
 def settable(proxy):
     """Names and kinds of the properties a user can type into."""
     out = []
@@ -104,6 +123,7 @@ def main():
             f.write(CALIBRATION)
         for it in range(args.iterations):
             proxies, sinks = build(calib)
+            add_scene_reader(folder, proxies, sinks)
             cases = []
             for _ in range(rng.choice([1, 1, 2, 3])):
                 name = rng.choice(sorted(proxies))
