@@ -136,6 +136,48 @@ got = [0.0] * 16
 projection.GetWorldToCamera(got)
 check(got == list(pose.ravel()), "vtkCatadioptricProjection.SetWorldToCamera(4x4 numpy)")
 
+# render_mesh(): numpy vertices and triangles in, numpy image out. An icosahedron around a point:
+# the pixel where project_points puts its centre is the mesh's colour, the frame shows through
+# elsewhere unchanged, and the mesh covers about the disc its radius gives (the mirror's
+# magnification measured with project_points, an independent route through the same camera).
+phi = (1 + 5 ** 0.5) / 2
+ico = np.array([[-1, phi, 0], [1, phi, 0], [-1, -phi, 0], [1, -phi, 0], [0, -1, phi], [0, 1, phi],
+                [0, -1, -phi], [0, 1, -phi], [phi, 0, -1], [phi, 0, 1], [-phi, 0, -1],
+                [-phi, 0, 1]], dtype=float)
+ico /= np.linalg.norm(ico[0])
+faces = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4],
+         [11, 10, 2], [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
+         [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]]
+centre, radius = np.array([0.06, -0.32, 0.92]), 0.03
+import os
+camera = car.vtkCatadioptricCamera()  # the demo camera (render_mesh's default) from its file
+check(camera.Load(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Data",
+                               "calibration", "demo-camera.yaml")), "demo camera file")
+frame_in = rng.integers(0, 256, size=(1048, 1328, 3), dtype=np.uint8)
+drawn = car.render_mesh(centre + radius * ico, faces, frame=frame_in, color=(0.0, 1.0, 0.0))
+check(drawn.shape == (1048, 1328, 4), "render_mesh shape %s" % (drawn.shape,))
+(cx, cy), = car.project_points(camera, [centre])[0]
+check((drawn[int(round(cy)), int(round(cx))] == [0, 255, 0, 255]).all(), "the centre is green")
+green = (drawn[:, :, :3] == [0, 255, 0]).all(axis=2)
+check((drawn[~green][:, :3] == frame_in[~green]).all(), "the frame shows through unchanged")
+# Pixels per metre at the centre, across the line of sight: project points 1 mm off it.
+ring = car.project_points(camera, [centre + [0.001, 0, 0], centre + [0, 0, 0.001]])[0]
+scale = np.sqrt(abs(np.linalg.det(np.array(ring) - [cx, cy]))) / 0.001
+expected = np.pi * (radius * scale) ** 2
+check(0.75 * expected < green.sum() < 1.1 * expected,
+      "render_mesh covers %d pixels, the sphere's disc about %.0f" % (green.sum(), expected))
+bgr = car.render_mesh(centre + radius * ico, faces, frame=frame_in[:, :, ::-1], bgr=True,
+                      color=(0.0, 1.0, 0.0))
+check((bgr == drawn[:, :, [2, 1, 0, 3]]).all(), "render_mesh bgr")
+for bad, error in (((ico, [[0, 1, 12]]), ValueError), ((ico[:, :2], faces), ValueError),
+                   ((ico, faces, "/nonexistent/calibration.yaml"), RuntimeError)):
+    try:
+        car.render_mesh(*bad)
+        check(False, "render_mesh accepted %s" % (error.__name__,))
+    except error as e:
+        check(str(e).startswith("render_mesh: "), "render_mesh's error: %s" % e)
+print("render_mesh: %d pixels for a sphere whose disc is %.0f" % (green.sum(), expected))
+
 # render(): the scene renderer's frame, top row first.
 frame = car.render()
 check(frame.shape == (1048, 1328, 4) and frame.dtype == np.uint8, "render() shape %s" % (frame.shape,))

@@ -185,7 +185,9 @@ def project_points(camera, points, solver="quartic"):
     Examples
     --------
     >>> import numpy, catadioptricar as car
-    >>> camera = car.vtkCatadioptricCamera()          # the built-in demo camera
+    >>> camera = car.vtkCatadioptricCamera()
+    >>> camera.Load("Data/calibration/demo-camera.yaml")  # the demo camera
+    True
     >>> pixels, statuses, mirror = car.project_points(camera, [[0.15, -0.35, 0.95]])
     >>> int(statuses[0]) == car.vtkCatadioptricCamera.VALID
     True
@@ -285,4 +287,113 @@ def render(scene_file=None, bgr=False, antialias=0):
     return image_to_numpy(scene.GetOutput(), bgr=bgr)
 
 
-__all__ += ["image_to_numpy", "numpy_to_image", "project_points", "back_project", "render"]
+def render_mesh(vertices, triangles, camera=None, frame=None, color=(0.8, 0.8, 0.8),
+                background=(0.0, 0.0, 0.0, 1.0), bgr=False, antialias=0):
+    """Draw a triangle mesh given as numpy arrays through the mirror; return the image as numpy.
+
+    The fast path (projection, the paper's painter order, the compositor) in one call: vertices
+    in, frame out, no VTK objects to build.
+
+    Parameters
+    ----------
+    vertices : array_like
+        ``N x 3`` world points.
+    triangles : array_like
+        ``M x 3`` vertex indices (0 to N - 1).
+    camera : vtkCatadioptricCamera or str, optional
+        A camera, or a calibration file's path; None: the built-in demo camera.
+    frame : array_like, optional
+        The camera frame to draw onto, ``H x W x 3`` or ``H x W x 4`` ``uint8`` of the camera's
+        size, top row first; None: ``background``.
+    color : sequence of 3 floats, optional
+        The mesh's colour, 0 to 1.
+    background : sequence of 4 floats, optional
+        RGBA 0 to 1 where there is no frame and no mesh.
+    bgr : bool, optional
+        ``frame`` and the result in OpenCV's channel order.
+    antialias : int, optional
+        Samples per pixel side on the edges (2 to 4); 0 is off.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``H x W x 4`` RGBA (BGRA with ``bgr``) ``uint8``, top row first.
+
+    Raises
+    ------
+    ValueError
+        Arrays of the wrong shape, indices out of range.
+    RuntimeError
+        The pipeline's error (a camera that cannot be loaded, a frame of the wrong size).
+
+    Examples
+    --------
+    >>> import numpy, catadioptricar as car
+    >>> square = numpy.array([[0.1, -0.4, 0.9], [0.2, -0.4, 0.9], [0.2, -0.4, 1.0], [0.1, -0.4, 1.0]])
+    >>> image = car.render_mesh(square, [[0, 1, 2], [0, 2, 3]], color=(1, 0, 0))
+    >>> image.shape
+    (1048, 1328, 4)
+    """
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.util.vtkConstants import VTK_STRING
+
+    np = _numpy()
+    v = np.asarray(vertices, dtype=np.float64)
+    t = np.asarray(triangles)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise ValueError("render_mesh: vertices must be N x 3, not %s" % (v.shape,))
+    if t.ndim != 2 or t.shape[1] != 3 or (t.size and not np.issubdtype(t.dtype, np.integer)):
+        raise ValueError("render_mesh: triangles must be M x 3 integers, not %s %s"
+                         % (t.shape, t.dtype))
+    if t.size and (t.min() < 0 or t.max() >= len(v)):
+        raise ValueError("render_mesh: triangle indices must be 0 to %d" % (len(v) - 1))
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(v), deep=True))
+    cells = vtkCellArray()
+    offsets = np.arange(0, 3 * len(t) + 1, 3, dtype=np.int64)
+    cells.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True),
+                  numpy_to_vtkIdTypeArray(np.ascontiguousarray(t, dtype=np.int64).ravel(),
+                                          deep=True))
+    mesh = vtkPolyData()
+    mesh.SetPoints(points)
+    mesh.SetPolys(cells)
+
+    projection = vtkCatadioptricProjection()  # noqa: F405
+    if isinstance(camera, str):
+        projection.SetCalibrationFileName(camera)
+    elif camera is not None:
+        projection.SetCamera(camera)
+    projection.SetInputData(mesh)
+    sort = vtkCatadioptricPainterSort()  # noqa: F405
+    sort.SetInputConnection(projection.GetOutputPort())
+    compositor = vtkCatadioptricCompositor()  # noqa: F405
+    compositor.AddInputConnection(1, sort.GetOutputPort())
+    compositor.SetColorArrayName("")
+    compositor.SetColor(*color)
+    compositor.SetBackgroundColor(*background)
+    if antialias:
+        compositor.SetAntialias(True)
+        compositor.SetAntialiasSamples(int(antialias))
+    if frame is not None:
+        compositor.SetInputData(0, numpy_to_image(frame, bgr=bgr))
+    errors = []
+
+    @calldata_type(VTK_STRING)
+    def on_error(caller, event, message):
+        # "ERROR: In FILE, line N\nCLASS (ADDRESS): the sentence": keep the sentence.
+        errors.append(str(message).split("): ", 1)[-1].strip())
+
+    for algorithm in (projection, sort, compositor):
+        algorithm.AddObserver(vtkCommand.ErrorEvent, on_error)
+    compositor.Update()
+    if errors or compositor.GetOutput().GetNumberOfPoints() == 0:
+        raise RuntimeError("render_mesh: " + ("; ".join(str(e) for e in errors if e)
+                                              or "no image was made"))
+    return image_to_numpy(compositor.GetOutput(), bgr=bgr)
+
+
+__all__ += ["image_to_numpy", "numpy_to_image", "project_points", "back_project", "render",
+            "render_mesh"]
