@@ -39,6 +39,9 @@ constexpr const char* Materials = "Materials";
 constexpr const char* RGBA = "RGBA";
 /// Image point data, int64: the triangle drawn at each pixel (-1: none).
 constexpr const char* VisibleTriangle = "VisibleTriangle";
+/// Cell data, int: which part of the rig each cell of vtkCatadioptricRigSource draws
+/// (vtkCatadioptricRigSource::RigParts).
+constexpr const char* RigPart = "RigPart";
 }
 
 #endif

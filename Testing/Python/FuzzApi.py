@@ -1,10 +1,10 @@
 """A seeded fuzzer of the Python API: builds the whole pipeline (environment frame, remesher,
-projection, lighting with occluders, painter sort, compositor, ray tracer), then misuses it at
-random before each update: every Set* method of every wrapped object called with extreme or wrong
-values (NaN, infinities, huge and negative numbers, empty and missing files, None), and inputs
-swapped for broken data sets (no cells, lines, quads and strips, NaN and huge points, ids past the
-end, arrays of the wrong type, length or component count, garbage camera field data, float or 3D
-frames and textures).
+projection, lighting with occluders, painter sort, compositor, ray tracer) and the rig source,
+then misuses it at random before each update: every Set* method of every wrapped object called
+with extreme or wrong values (NaN, infinities, huge and negative numbers, empty and missing files,
+None), and inputs swapped for broken data sets (no cells, lines, quads and strips, NaN and huge
+points, ids past the end, arrays of the wrong type, length or component count, garbage camera field
+data, float or 3D frames and textures).
 
     FuzzApi.py [--iterations N] [--seed K] [--verbose]
 
@@ -214,13 +214,16 @@ class Pipeline:
         self.tracer = car.vtkCatadioptricRayTracer()
         self.tracer.SetCamera(self.camera)
         self.tracer.SetInputConnection(1, self.sphere.GetOutputPort())
+        self.rig = car.vtkCatadioptricRigSource()
+        self.rig.SetCamera(self.camera)
+        self.rig.SetMirrorResolution(8)
         self.objects = {"camera": self.camera, "frame": self.frame, "remesher": self.remesher,
                         "projection": self.projection, "lighting": self.lighting,
                         "sort": self.sort, "compositor": self.compositor, "tracer": self.tracer,
-                        "light": light, "property": None}
+                        "rig": self.rig, "light": light, "property": None}
 
     def sinks(self):
-        return [self.compositor, self.tracer]
+        return [self.compositor, self.tracer, self.rig]
 
 
 def setters(obj):
@@ -301,6 +304,8 @@ def check(p, messages):
     """An update that reported no error must have produced a well-formed result."""
     for sink in p.sinks():
         image = sink.GetOutput()
+        if not image.IsA("vtkImageData"):
+            continue  # the rig's polydata
         dims = image.GetDimensions()
         scalars = image.GetPointData().GetScalars()
         if scalars is not None and scalars.GetNumberOfTuples() > 0:

@@ -1,8 +1,8 @@
 """A seeded fuzzer of the ParaView plugin's properties, run by pvpython: builds the plugin's
 pipeline (environment frame, remesher, point-set surface, projection, lighting, painter sort,
-compositor, ray tracer), then sets random properties of random proxies to extreme or wrong values
-(NaN, infinities, huge, negative and out-of-domain numbers, empty and missing file names), updates
-every sink and sometimes shows it in a render view.
+compositor, ray tracer, rig), then sets random properties of random proxies to extreme or wrong
+values (NaN, infinities, huge, negative and out-of-domain numbers, empty and missing file names),
+updates every sink and sometimes shows it in a render view.
 
     pvpython --force-offscreen-rendering FuzzParaView.py PLUGIN [--iterations N] [--seed K]
         [--verbose]
@@ -40,10 +40,11 @@ def build(calib):
     sort = simple.CatadioptricPainterSort(Input=lighting)
     compositor = simple.CatadioptricCompositor(Frame=frame, Input=[sort])
     tracer = simple.CatadioptricRayTracer(Frame=frame, Input=[points], CalibrationFileName=calib)
+    rig = simple.CatadioptricRig(CalibrationFileName=calib, MirrorResolution=8)
     proxies = {"frame": frame, "remesher": remesher, "points": points,
                "projection": projection, "lighting": lighting, "sort": sort,
-               "compositor": compositor, "tracer": tracer}
-    return proxies, [compositor, tracer]
+               "compositor": compositor, "tracer": tracer, "rig": rig}
+    return proxies, [compositor, tracer, rig]
 
 
 # A scene for the scene reader, beside the calibration (camera.yaml): two frames.
@@ -93,6 +94,8 @@ def update(rng, sinks, view, cases):
     for sink in sinks:
         sink.UpdatePipeline()
         image = servermanager.Fetch(sink)
+        if not image.IsA("vtkImageData"):
+            continue  # the rig's polydata: a result or an error, checked by not crashing
         dims = image.GetDimensions()
         scalars = image.GetPointData().GetScalars()
         if scalars is not None and scalars.GetNumberOfTuples() > 0:

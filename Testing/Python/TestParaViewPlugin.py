@@ -34,7 +34,7 @@ def check_menu():
     names = {"filters": ["CatadioptricRemesher", "CatadioptricPointSetSurface",
                          "CatadioptricProjection", "CatadioptricLighting", "CatadioptricPainterSort",
                          "CatadioptricCompositor", "CatadioptricRayTracer"],
-             "sources": ["CatadioptricEnvironmentSource"]}
+             "sources": ["CatadioptricEnvironmentSource", "CatadioptricRigSource"]}
     for group, proxies in names.items():
         for name in proxies:
             prototype = pxm.SMProxyManager.GetPrototypeProxy(group, name)
