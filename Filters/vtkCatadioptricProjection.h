@@ -16,8 +16,8 @@
  * the threads of vtkCatadioptricParallel (as many as vtkSMPTools would use).
  *
  * The camera comes from SetCamera(), or, when no camera object is set, from CalibrationFileName,
- * or else from the panel camera (CameraImageSize, FocalLength, ..., WorldToCamera: the demo camera by
- * default).
+ * or else from the panel camera (CameraImageSize, FocalLength, ..., WorldToCamera: the demo camera
+ * by default).
  */
 #ifndef vtkCatadioptricProjection_h
 #define vtkCatadioptricProjection_h
@@ -71,10 +71,10 @@ public:
   ///@{
   /// The camera used when no camera object and no CalibrationFileName are set (ParaView's
   /// panel): the built-in demo camera's values (Data/calibration/demo-camera.yaml) until changed.
-  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels; Distortion
-  /// k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by row or a
-  /// 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next update that
-  /// names the property.
+  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels;
+  /// Distortion k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by
+  /// row or a 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next
+  /// update that names the property.
   void SetCameraImageSize(int width, int height);
   void GetCameraImageSize(int size[2]);
   void SetFocalLength(double fx, double fy);

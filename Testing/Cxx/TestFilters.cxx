@@ -505,7 +505,8 @@ TEST(vtkCatadioptricProjection, BadInputFailsCleanly)
   proj->Update();
   EXPECT_EQ(errors->Count, 1);
   EXPECT_EQ(proj->GetOutput()->GetNumberOfPoints(), 0);
-  EXPECT_NE(errors->Last.find(": Camera Image Size must be positive"), std::string::npos) << errors->Last;
+  EXPECT_NE(errors->Last.find(": Camera Image Size must be positive"), std::string::npos)
+    << errors->Last;
   proj->SetCameraImageSize(1328, 1048);
   proj->Update();
   EXPECT_EQ(errors->Count, 1) << errors->Last;
