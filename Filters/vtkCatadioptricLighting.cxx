@@ -20,6 +20,7 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -30,12 +31,14 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <tuple>
 #include <vector>
@@ -380,6 +383,262 @@ void vtkCatadioptricLighting::AddSpotLight(double px, double py, double pz, doub
   this->AddLight(light);
 }
 
+void vtkCatadioptricLighting::AddPointLight(double px, double py, double pz, double r, double g,
+  double b, double constant, double linear, double quadratic)
+{
+  if (!(constant >= 0 && linear >= 0 && quadratic >= 0 && constant + linear + quadratic > 0))
+  {
+    vtkErrorMacro("A point light's attenuation (constant, linear, quadratic) must be three numbers "
+                  "that are not negative and not all 0, not "
+      << constant << ", " << linear << ", " << quadratic << ".");
+    return;
+  }
+  vtkNew<vtkLight> light;
+  light->SetPositional(true);
+  light->SetPosition(px, py, pz);
+  light->SetConeAngle(180.0); // 90 or more: a point light
+  light->SetAttenuationValues(constant, linear, quadratic);
+  light->SetAmbientColor(0, 0, 0);
+  light->SetDiffuseColor(r, g, b);
+  light->SetSpecularColor(r, g, b);
+  this->AddLight(light);
+}
+
+void vtkCatadioptricLighting::AddDirectionalLight(
+  double dx, double dy, double dz, double r, double g, double b)
+{
+  const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+  if (!(length > 0 && length < std::numeric_limits<double>::infinity()))
+  {
+    vtkErrorMacro("A directional light's direction (towards the light) must be finite and not "
+                  "zero, not "
+      << dx << ", " << dy << ", " << dz << ".");
+    return;
+  }
+  // vtkLight's directional light shines from its position towards its focal point.
+  vtkNew<vtkLight> light;
+  light->SetPositional(false);
+  light->SetPosition(dx, dy, dz);
+  light->SetFocalPoint(0, 0, 0);
+  light->SetAmbientColor(0, 0, 0);
+  light->SetDiffuseColor(r, g, b);
+  light->SetSpecularColor(r, g, b);
+  this->AddLight(light);
+}
+
+namespace
+{
+// Removes the lights of one kind; true when it removed any.
+bool RemoveLightsOfKind(vtkLightCollection* lights, catar::LightSource::Kind kind)
+{
+  std::vector<vtkLight*> doomed;
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* l = lights->GetNextLight(it))
+  {
+    if (vtkCatadioptricLightingSupport::LightKind(l) == kind)
+    {
+      doomed.push_back(l);
+    }
+  }
+  for (vtkLight* l : doomed)
+  {
+    lights->RemoveItem(l);
+  }
+  return !doomed.empty();
+}
+} // namespace
+
+void vtkCatadioptricLighting::RemoveAllSpotLights()
+{
+  if (RemoveLightsOfKind(this->Lights, catar::LightSource::Kind::Spot))
+  {
+    this->Modified();
+  }
+}
+
+void vtkCatadioptricLighting::RemoveAllPointLights()
+{
+  if (RemoveLightsOfKind(this->Lights, catar::LightSource::Kind::Point))
+  {
+    this->Modified();
+  }
+}
+
+void vtkCatadioptricLighting::RemoveAllDirectionalLights()
+{
+  if (RemoveLightsOfKind(this->Lights, catar::LightSource::Kind::Directional))
+  {
+    this->Modified();
+  }
+}
+
+namespace
+{
+// The record's sizes (the header's WriteToFieldData says what they hold).
+constexpr int kSettingsComponents = 23;
+constexpr int kLightComponents = 22;
+static_assert(kSettingsComponents == 9 + vtkCatadioptricLightingSupport::MaterialComponents,
+  "the settings end with one material");
+} // namespace
+
+void vtkCatadioptricLighting::WriteToFieldData(vtkFieldData* fieldData)
+{
+  this->WriteRecord(fieldData, this->InputColorArrayName);
+}
+
+void vtkCatadioptricLighting::WriteRecord(vtkFieldData* fieldData, const char* colorArrayName)
+{
+  if (!fieldData)
+  {
+    return;
+  }
+  vtkProperty* p = this->Property;
+  double s[kSettingsComponents] = { static_cast<double>(this->ShadingMode),
+    this->Shadows ? 1.0 : 0.0, this->TwoSidedLighting ? 1.0 : 0.0, this->GlobalAmbient[0],
+    this->GlobalAmbient[1], this->GlobalAmbient[2], this->Emission[0], this->Emission[1],
+    this->Emission[2], p->GetAmbient(), p->GetDiffuse(), p->GetSpecular(), p->GetSpecularPower() };
+  p->GetAmbientColor(s + 13);
+  p->GetDiffuseColor(s + 16);
+  p->GetSpecularColor(s + 19);
+  s[22] = p->GetOpacity();
+  vtkNew<vtkDoubleArray> settings;
+  settings->SetName(vtkCatadioptricArrayNames::LightingSettings);
+  settings->SetNumberOfComponents(kSettingsComponents);
+  settings->InsertNextTuple(s);
+
+  vtkNew<vtkDoubleArray> lights;
+  lights->SetName(vtkCatadioptricArrayNames::LightingLights);
+  lights->SetNumberOfComponents(kLightComponents);
+  vtkCollectionSimpleIterator it;
+  this->Lights->InitTraversal(it);
+  while (vtkLight* l = this->Lights->GetNextLight(it))
+  {
+    if (!l->GetSwitch())
+    {
+      continue; // as ConvertLights: a light switched off lights nothing
+    }
+    double v[kLightComponents];
+    v[0] = l->GetPositional() ? 1.0 : 0.0;
+    l->GetPosition(v + 1);
+    l->GetFocalPoint(v + 4);
+    v[7] = l->GetConeAngle();
+    v[8] = l->GetExponent();
+    l->GetAttenuationValues(v + 9);
+    v[12] = l->GetIntensity();
+    l->GetAmbientColor(v + 13);
+    l->GetDiffuseColor(v + 16);
+    l->GetSpecularColor(v + 19);
+    lights->InsertNextTuple(v);
+  }
+
+  vtkNew<vtkStringArray> colors;
+  colors->SetName(vtkCatadioptricArrayNames::LightingColorArray);
+  colors->InsertNextValue(colorArrayName ? colorArrayName : "");
+
+  fieldData->AddArray(settings);
+  fieldData->AddArray(lights);
+  fieldData->AddArray(colors);
+}
+
+bool vtkCatadioptricLighting::HasLightingRecord(vtkFieldData* fieldData)
+{
+  return fieldData &&
+    (fieldData->GetAbstractArray(vtkCatadioptricArrayNames::LightingSettings) ||
+      fieldData->GetAbstractArray(vtkCatadioptricArrayNames::LightingLights) ||
+      fieldData->GetAbstractArray(vtkCatadioptricArrayNames::LightingColorArray));
+}
+
+bool vtkCatadioptricLighting::ReadFromFieldData(vtkFieldData* fieldData)
+{
+  if (!fieldData)
+  {
+    return false;
+  }
+  vtkDataArray* settings = fieldData->GetArray(vtkCatadioptricArrayNames::LightingSettings);
+  vtkDataArray* lights = fieldData->GetArray(vtkCatadioptricArrayNames::LightingLights);
+  auto* colors = vtkStringArray::SafeDownCast(
+    fieldData->GetAbstractArray(vtkCatadioptricArrayNames::LightingColorArray));
+  if (!settings || !lights || !colors || settings->GetNumberOfComponents() != kSettingsComponents ||
+    settings->GetNumberOfTuples() != 1 || lights->GetNumberOfComponents() != kLightComponents ||
+    colors->GetNumberOfValues() != 1)
+  {
+    return false;
+  }
+  double s[kSettingsComponents];
+  settings->GetTuple(0, s);
+  if (!(s[0] == NONE || s[0] == FLAT || s[0] == GOURAUD))
+  {
+    return false;
+  }
+  vtkNew<vtkLightCollection> collection;
+  for (vtkIdType i = 0; i < lights->GetNumberOfTuples(); ++i)
+  {
+    double v[kLightComponents];
+    lights->GetTuple(i, v);
+    vtkNew<vtkLight> l;
+    l->SetPositional(v[0] != 0);
+    l->SetPosition(v + 1);
+    l->SetFocalPoint(v + 4);
+    l->SetConeAngle(v[7]);
+    l->SetExponent(v[8]);
+    l->SetAttenuationValues(v + 9);
+    l->SetIntensity(v[12]);
+    l->SetAmbientColor(v + 13);
+    l->SetDiffuseColor(v + 16);
+    l->SetSpecularColor(v + 19);
+    collection->AddItem(l);
+  }
+  vtkNew<vtkProperty> p;
+  p->SetAmbient(s[9]);
+  p->SetDiffuse(s[10]);
+  p->SetSpecular(s[11]);
+  p->SetSpecularPower(s[12]);
+  p->SetAmbientColor(s + 13);
+  p->SetDiffuseColor(s + 16);
+  p->SetSpecularColor(s + 19);
+  p->SetOpacity(s[22]);
+  this->SetLights(collection);
+  this->SetProperty(p);
+  this->SetShadingMode(static_cast<int>(s[0]));
+  this->SetShadows(s[1] != 0);
+  this->SetTwoSidedLighting(s[2] != 0);
+  this->SetGlobalAmbient(s + 3);
+  this->SetEmission(s + 6);
+  this->SetInputColorArrayName(colors->GetValue(0).c_str());
+  return true;
+}
+
+void vtkCatadioptricLighting::RecordLighting(vtkPolyData* input, vtkPolyData* output)
+{
+  const float unused[4] = { 0, 0, 0, 1 };
+  const vtkCatadioptricColorArray base(input, this->InputColorArrayName, unused);
+  std::string name;
+  if (base.HasArray() && std::strcmp(this->InputColorArrayName, vtkCatadioptricArrayNames::Colors))
+  {
+    name = this->InputColorArrayName; // passed through as it is
+  }
+  else if (base.HasArray())
+  {
+    // The lit Colors replace the base colours: keep them (the same values, shared) as BaseColors.
+    vtkSmartPointer<vtkDataArray> kept = vtk::TakeSmartPointer(base.GetArray()->NewInstance());
+    kept->ShallowCopy(base.GetArray());
+    kept->SetName(vtkCatadioptricArrayNames::BaseColors);
+    output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::BaseColors);
+    output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::BaseColors);
+    if (base.IsPerPoint())
+    {
+      output->GetPointData()->AddArray(kept);
+    }
+    else
+    {
+      output->GetCellData()->AddArray(kept);
+    }
+    name = vtkCatadioptricArrayNames::BaseColors;
+  }
+  this->WriteRecord(output->GetFieldData(), name.c_str());
+}
+
 void vtkCatadioptricLighting::SetDiffuseColor(double r, double g, double b)
 {
   this->Property->SetDiffuseColor(r, g, b);
@@ -469,6 +728,8 @@ int vtkCatadioptricLighting::RequestData(
     return 0;
   }
   output->ShallowCopy(input);
+  // The lighting recorded in the output, for the ray tracer to light the mesh alike.
+  this->RecordLighting(input, output);
   const vtkIdType nPts = input->GetNumberOfPoints();
   if (nPts == 0)
   {

@@ -28,6 +28,13 @@
  * unsigned char 0-255 or floating 0-1), it replaces the material's ambient and diffuse colours per
  * point/cell (so a box with a colour per face is lit face by face).
  *
+ * The output's field data records the lighting (WriteToFieldData: lights, material, shading mode,
+ * shadows, two-sided lighting, global ambient, emission, base colour array), so that
+ * vtkCatadioptricRayTracer lights the output alike without SetMeshLighting (ParaView's
+ * pipeline). When the base colours are the input's "Colors", which the lit colours replace, they
+ * are kept in the output as "BaseColors" (point or cell data, as they came) for the record to
+ * name.
+ *
  * Shadows: with Shadows on, a light contributes its diffuse and specular terms only where the
  * segment from the surface point to the light is free: Embree ray queries against the input's own
  * polygons and those of the meshes on input port 1 (optional, repeatable: the other objects of the
@@ -49,6 +56,7 @@
 #include <memory> // for std::unique_ptr
 
 class vtkCatadioptricOccluders;
+class vtkFieldData;
 class vtkLight;
 class vtkLightCollection;
 class vtkProperty;
@@ -84,10 +92,52 @@ public:
   void SetLights(vtkLightCollection* lights);
   ///@}
 
-  /// Convenience for scripts and ParaView: adds a spotlight at `position` aimed at `focalPoint`,
-  /// cone half angle in degrees, diffuse and specular colour (r, g, b), no ambient, exponent 1.
+  ///@{
+  /// Convenience for scripts and ParaView, one light of each kind, all in world coordinates, the
+  /// colour (r, g, b, 0 to 1) its diffuse and specular colour, no ambient:
+  ///  - AddSpotLight: at `position` aimed at `focalPoint`, cone half angle in degrees (below 90),
+  ///    exponent 1, no attenuation;
+  ///  - AddPointLight: at `position`, shining every way, its light divided by
+  ///    constant + linear d + quadratic d^2 at distance d (1 0 0: no fall-off; the three not
+  ///    negative, not all 0);
+  ///  - AddDirectionalLight: infinitely far in `direction` (from the scene towards the light, not
+  ///    zero; any length), the same direction at every point, no attenuation.
+  /// A bad value is an error and adds nothing.
   void AddSpotLight(double px, double py, double pz, double fx, double fy, double fz,
     double coneAngle, double r, double g, double b);
+  void AddPointLight(double px, double py, double pz, double r, double g, double b, double constant,
+    double linear, double quadratic);
+  void AddDirectionalLight(double dx, double dy, double dz, double r, double g, double b);
+  ///@}
+
+  ///@{
+  /// Remove the lights of one kind only (spot: positional with a cone angle below 90 degrees;
+  /// point: positional with a cone of 90 degrees or more; directional: not positional), whether
+  /// added with AddLight or the Add...Light shortcuts. ParaView's SpotLights, PointLights and
+  /// DirectionalLights each clear their own kind with these before adding theirs.
+  void RemoveAllSpotLights();
+  void RemoveAllPointLights();
+  void RemoveAllDirectionalLights();
+  ///@}
+
+  ///@{
+  /// The lighting as field data: the record the filter leaves in its output's field data, so that
+  /// vtkCatadioptricRayTracer, given that output as a mesh, lights it as this filter would
+  /// (as if SetMeshLighting had been called with it). Three arrays: LightingSettings (23 doubles:
+  /// shading mode, shadows, two-sided lighting, global ambient (3), emission (3), then the
+  /// material as one row of "Materials": ambient, diffuse, specular, specular power, ambient
+  /// colour (3), diffuse colour (3), specular colour (3), opacity), LightingLights (22 doubles a
+  /// light that is switched on: positional, position (3), focal point (3), cone angle, exponent,
+  /// attenuation (3), intensity, ambient, diffuse and specular colours (3 each)) and
+  /// LightingColorArray (a string: the base colour array, "" for none).
+  /// WriteToFieldData writes this filter's parameters with InputColorArrayName. ReadFromFieldData
+  /// makes this filter's lights, material and settings those of a record: false, and the filter
+  /// unchanged, when the field data holds no record or a malformed one. HasLightingRecord: whether
+  /// any of the three arrays is there.
+  void WriteToFieldData(vtkFieldData* fieldData);
+  bool ReadFromFieldData(vtkFieldData* fieldData);
+  static bool HasLightingRecord(vtkFieldData* fieldData);
+  ///@}
 
   ///@{
   /// The material. A default vtkProperty (grey, no specular) is created.
@@ -178,6 +228,12 @@ protected:
 private:
   vtkCatadioptricLighting(const vtkCatadioptricLighting&) = delete;
   void operator=(const vtkCatadioptricLighting&) = delete;
+
+  // Writes the record with `colorArrayName` as its base colour array.
+  void WriteRecord(vtkFieldData* fieldData, const char* colorArrayName);
+  // The output's record: the base colours the output still has (kept as BaseColors where the lit
+  // Colors replace them) or none.
+  void RecordLighting(vtkPolyData* input, vtkPolyData* output);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

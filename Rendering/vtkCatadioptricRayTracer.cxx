@@ -435,8 +435,25 @@ int vtkCatadioptricRayTracer::RequestData(
     meshes.emplace_back();
     if (vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m))
     {
+      // SetMeshLighting's, else the lighting recorded by the lighting filter that made the mesh.
+      vtkCatadioptricLighting* lighting = this->GetMeshLighting(m);
+      vtkSmartPointer<vtkCatadioptricLighting> recorded;
+      if (!lighting && this->UseInputLighting &&
+        vtkCatadioptricLighting::HasLightingRecord(mesh->GetFieldData()))
+      {
+        recorded = vtkSmartPointer<vtkCatadioptricLighting>::New();
+        if (!recorded->ReadFromFieldData(mesh->GetFieldData()))
+        {
+          vtkErrorMacro("Mesh " << m
+                                << " has a malformed lighting record (field data LightingSettings, "
+                                   "LightingLights, LightingColorArray): turn UseInputLighting off "
+                                   "or light it again with vtkCatadioptricLighting.");
+          return 0;
+        }
+        lighting = recorded;
+      }
       const std::string error =
-        MakeTraceMesh(mesh, this->GetMeshLighting(m), settings, meshes.back(), sceneLighting);
+        MakeTraceMesh(mesh, lighting, settings, meshes.back(), sceneLighting);
       if (!error.empty())
       {
         vtkErrorMacro("Mesh " << m << error);
@@ -529,6 +546,7 @@ void vtkCatadioptricRayTracer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Samples: " << this->Samples << "\n";
+  os << indent << "UseInputLighting: " << (this->UseInputLighting ? "On" : "Off") << "\n";
   os << indent << "NumberOfMirrorRays: " << this->NumberOfMirrorRays << "\n";
   os << indent << "NumberOfTracedRays: " << this->NumberOfTracedRays << "\n";
   os << indent << "NumberOfHits: " << this->NumberOfHits << "\n";

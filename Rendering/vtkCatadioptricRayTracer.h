@@ -23,10 +23,14 @@
  *
  * Lighting: SetMeshLighting(i, lighting) lights mesh i with the parameters of a
  * vtkCatadioptricLighting filter (its lights, property, shading mode, shadows, two-sided flag,
- * global ambient, emission and input colour array) without running it; the lights and global
- * ambient of the first such filter light the whole scene, and shadows are traced when any of
- * them has Shadows on. A mesh without lighting is drawn unlit with the array ColorArrayName
- * (point or cell data) or Color, as the compositor draws it.
+ * global ambient, emission and input colour array) without running it. A mesh that is the output
+ * of a vtkCatadioptricLighting filter (or of a later stage of the fast path) carries that filter's
+ * lighting in its field data (vtkCatadioptricLighting::WriteToFieldData): without SetMeshLighting,
+ * and with UseInputLighting on (the default), the mesh is lit with it exactly as SetMeshLighting
+ * with that filter would light it; this is how ParaView's pipeline lights the reference. The
+ * lights and global ambient of the first lit mesh light the whole scene, and shadows are traced
+ * when any lit mesh has Shadows on. A mesh without lighting is drawn unlit with the array
+ * ColorArrayName (point or cell data) or Color, as the compositor draws it.
  *
  * The camera comes from SetCamera(), CalibrationFileName or else the panel camera (CameraImageSize,
  * FocalLength, ..., WorldToCamera: the demo camera by default). The rays are back-projected once
@@ -87,10 +91,10 @@ public:
   ///@{
   /// The camera used when no camera object and no CalibrationFileName are set (ParaView's
   /// panel): the built-in demo camera's values (Data/calibration/demo-camera.yaml) until changed.
-  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels; Distortion
-  /// k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by row or a
-  /// 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next update that
-  /// names the property.
+  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels;
+  /// Distortion k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by
+  /// row or a 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next
+  /// update that names the property.
   void SetCameraImageSize(int width, int height);
   void GetCameraImageSize(int size[2]);
   void SetFocalLength(double fx, double fy);
@@ -110,6 +114,15 @@ public:
   void SetMeshLighting(int index, vtkCatadioptricLighting* lighting);
   vtkCatadioptricLighting* GetMeshLighting(int index);
   void RemoveAllMeshLightings();
+  ///@}
+
+  ///@{
+  /// Light a mesh that has no SetMeshLighting with the lighting recorded in its field data by
+  /// vtkCatadioptricLighting, when it has one. Default on; off: such meshes are drawn unlit with
+  /// ColorArrayName (for example the lit Colors of the lighting filter) or Color.
+  vtkSetMacro(UseInputLighting, bool);
+  vtkGetMacro(UseInputLighting, bool);
+  vtkBooleanMacro(UseInputLighting, bool);
   ///@}
 
   ///@{
@@ -143,6 +156,7 @@ protected:
 
   vtkCatadioptricCameraSlot CameraSlot;
   int Samples = 1;
+  bool UseInputLighting = true;
   vtkIdType NumberOfMirrorRays = 0;
   vtkIdType NumberOfTracedRays = 0;
   vtkIdType NumberOfHits = 0;

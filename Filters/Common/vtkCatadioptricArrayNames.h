@@ -35,6 +35,16 @@ constexpr const char* TextureIndex = "TextureIndex";
 constexpr const char* MaterialIndex = "MaterialIndex";
 /// Field data, 14 doubles a material (vtkCatadioptricLightingSupport::ReadMaterials).
 constexpr const char* Materials = "Materials";
+/// Field data, 23 doubles: the lighting that vtkCatadioptricLighting leaves in its output (its
+/// WriteToFieldData), read by vtkCatadioptricRayTracer.
+constexpr const char* LightingSettings = "LightingSettings";
+/// Field data, 22 doubles a light: the lights of that record.
+constexpr const char* LightingLights = "LightingLights";
+/// Field data, one string: the base colour array of that record ("" for none).
+constexpr const char* LightingColorArray = "LightingColorArray";
+/// Point or cell data: the input's base colours named "Colors", kept by vtkCatadioptricLighting
+/// where its lit Colors replace them.
+constexpr const char* BaseColors = "BaseColors";
 /// Image point data, RGBA unsigned char: the images made.
 constexpr const char* RGBA = "RGBA";
 /// Image point data, int64: the triangle drawn at each pixel (-1: none).

@@ -47,15 +47,7 @@ std::vector<catar::LightSource> vtkCatadioptricLightingSupport::ConvertLights(
       continue;
     }
     catar::LightSource s;
-    if (!l->GetPositional())
-    {
-      s.kind = catar::LightSource::Kind::Directional;
-    }
-    else
-    {
-      s.kind =
-        l->GetConeAngle() < 90.0 ? catar::LightSource::Kind::Spot : catar::LightSource::Kind::Point;
-    }
+    s.kind = LightKind(l);
     s.position = V3(l->GetPosition());
     s.focalPoint = V3(l->GetFocalPoint());
     const double i = l->GetIntensity();
@@ -68,6 +60,16 @@ std::vector<catar::LightSource> vtkCatadioptricLightingSupport::ConvertLights(
     out.push_back(s);
   }
   return out;
+}
+
+catar::LightSource::Kind vtkCatadioptricLightingSupport::LightKind(vtkLight* light)
+{
+  if (!light->GetPositional())
+  {
+    return catar::LightSource::Kind::Directional;
+  }
+  return light->GetConeAngle() < 90.0 ? catar::LightSource::Kind::Spot
+                                      : catar::LightSource::Kind::Point;
 }
 
 catar::Material vtkCatadioptricLightingSupport::ConvertProperty(

@@ -22,6 +22,7 @@ namespace catar
 class RayScene;
 }
 class vtkDataArray;
+class vtkLight;
 class vtkLightCollection;
 class vtkPolyData;
 class vtkProperty;
@@ -32,6 +33,10 @@ public:
   /// The lights that are switched on: not positional = directional; positional with
   /// ConeAngle < 90 = spotlight; otherwise a point light. Colours times Intensity.
   static std::vector<catar::LightSource> ConvertLights(vtkLightCollection* lights);
+
+  /// The kind of light a vtkLight is (as ConvertLights reads it): not positional = directional;
+  /// positional with ConeAngle < 90 = spot; otherwise point.
+  static catar::LightSource::Kind LightKind(vtkLight* light);
 
   /// Ka = Ambient * AmbientColor, Kd = Diffuse * DiffuseColor, Ks = Specular * SpecularColor,
   /// shininess = SpecularPower, and the given emission.

@@ -1,14 +1,20 @@
 // vtkCatadioptricLighting: shading modes, the viewer at the reflection point, and shadows (two
-// parallel plates: the lower plate is unlit exactly in the umbra of the upper one).
+// parallel plates: the lower plate is unlit exactly in the umbra of the upper one); directional
+// and point lights against Lambert + Phong written out here, removing one kind of light, and the
+// lighting recorded in the output.
 #include "Lighting.h"
 
 #include "vtkAppendPolyData.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricLighting.h"
+#include "vtkCatadioptricLightingSupport.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -16,12 +22,16 @@
 #include "vtkProperty.h"
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "TestUtilities.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -223,4 +233,340 @@ TEST(vtkCatadioptricLighting, UnprojectedInputIsAnError)
   lighting->Update();
   EXPECT_EQ(errors->Count, 1);
   EXPECT_NE(errors->Last.find("vtkCatadioptricProjection"), std::string::npos);
+}
+
+namespace
+{
+// Lambert + Phong at one point, written out here from the equation of Module/Lighting.h (not
+// with Core's Shade): toLight is the unit vector to the light, att its attenuation, the light's
+// colour both diffuse and specular, no light ambient, no emission; the normal is turned towards
+// the viewer (two-sided lighting). Material: ambient factor ka (ambient colour white), diffuse
+// factor kd times diffuseColor, specular factor ks (white), shininess.
+struct HandMaterial
+{
+  double ka, kd, ks, shininess;
+  std::array<double, 3> diffuseColor;
+};
+
+std::array<double, 3> HandPhong(const catar::Vec3& p, catar::Vec3 n, const catar::Vec3& viewer,
+  const catar::Vec3& toLight, double att, const std::array<double, 3>& lightColour,
+  const std::array<double, 3>& globalAmbient, const HandMaterial& m)
+{
+  const catar::Vec3 e = (viewer - p).normalized();
+  if (n.dot(e) < 0)
+  {
+    n = -n;
+  }
+  const double ndl = n.dot(toLight);
+  const double diffuse = std::max(ndl, 0.0);
+  const catar::Vec3 r = 2.0 * ndl * n - toLight;
+  const double specular = ndl > 0 ? std::pow(std::max(r.dot(e), 0.0), m.shininess) : 0.0;
+  std::array<double, 3> c;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double v = globalAmbient[k] * m.ka +
+      att *
+        (diffuse * lightColour[k] * m.kd * m.diffuseColor[k] + specular * lightColour[k] * m.ks);
+    c[k] = 255.0 * std::min(1.0, std::max(0.0, v));
+  }
+  return c;
+}
+
+// A plate at z = 0.80 below the mirror (normal +z, facing it), lit by `lighting` through the
+// small demo camera; calls `check(p, viewer, colour)` for every visible point and returns how
+// many.
+template<typename Check>
+int ForEachLitPoint(vtkCatadioptricLighting* lighting, Check check)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  catar_test::SetSmallDemoCamera(cam);
+  vtkNew<vtkCatadioptricProjection> proj;
+  proj->SetCamera(cam);
+  proj->SetInputData(Plate(-0.15, 0.15, -0.55, -0.25, 0.80, 20));
+  lighting->SetInputConnection(proj->GetOutputPort());
+  lighting->Update();
+  vtkPolyData* out = lighting->GetOutput();
+  vtkDataArray* colors = out->GetPointData()->GetArray("Colors");
+  vtkDataArray* mirror = out->GetPointData()->GetArray("MirrorPoint");
+  vtkDataArray* visible = out->GetPointData()->GetArray("Visible");
+  EXPECT_TRUE(colors && mirror && visible);
+  if (!colors || !mirror || !visible)
+  {
+    return 0;
+  }
+  const catar::CameraModel model = cam->GetModel();
+  int n = 0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    if (visible->GetComponent(i, 0) == 0)
+    {
+      continue;
+    }
+    double x[3], mp[3];
+    out->GetPoint(i, x);
+    mirror->GetTuple(i, mp);
+    check(catar::Vec3(x[0], x[1], x[2]), model.CameraToWorld(catar::Vec3(mp[0], mp[1], mp[2])),
+      ColorAt(colors, i));
+    ++n;
+  }
+  return n;
+}
+
+// The number of lights of each kind (spot, point, directional) as the lighting reads them.
+std::array<int, 3> Kinds(vtkCatadioptricLighting* lighting)
+{
+  std::array<int, 3> count{ 0, 0, 0 };
+  for (const catar::LightSource& s :
+    vtkCatadioptricLightingSupport::ConvertLights(lighting->GetLights()))
+  {
+    ++count[s.kind == catar::LightSource::Kind::Spot ? 0
+        : s.kind == catar::LightSource::Kind::Point  ? 1
+                                                     : 2];
+  }
+  return count;
+}
+} // namespace
+
+TEST(vtkCatadioptricLighting, DirectionalLightOnAPlaneHasTheClosedFormColour)
+{
+  // Towards the light: chosen so that the plate reflects it towards the mirror (a highlight).
+  const catar::Vec3 towards(0.05, -0.9, 0.45);
+  const std::array<double, 3> lightColour{ 1.0, 0.9, 0.8 }, globalAmbient{ 0.1, 0.2, 0.3 };
+  const HandMaterial m{ 0.2, 0.9, 0.5, 10.0, { 0.7, 0.6, 0.5 } };
+  vtkNew<vtkCatadioptricLighting> lighting;
+  lighting->AddDirectionalLight(
+    towards.x(), towards.y(), towards.z(), lightColour[0], lightColour[1], lightColour[2]);
+  lighting->SetDiffuseColor(m.diffuseColor[0], m.diffuseColor[1], m.diffuseColor[2]);
+  lighting->SetAmbient(m.ka);
+  lighting->SetDiffuse(m.kd);
+  lighting->SetSpecular(m.ks);
+  lighting->SetSpecularPower(m.shininess);
+  lighting->SetGlobalAmbient(globalAmbient.data());
+  lighting->ShadowsOff();
+  EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 0, 0, 1 }));
+  double brightest = 0, dimmest = 255;
+  const int n = ForEachLitPoint(
+    lighting, [&](const catar::Vec3& p, const catar::Vec3& viewer, const std::array<double, 3>& c) {
+      const auto expected = HandPhong(
+        p, catar::Vec3(0, 0, 1), viewer, towards.normalized(), 1.0, lightColour, globalAmbient, m);
+      for (int k = 0; k < 3; ++k)
+      {
+        EXPECT_NEAR(c[k], expected[k], 1.0) << "channel " << k << " at " << p.transpose();
+      }
+      brightest = std::max(brightest, c[0]);
+      dimmest = std::min(dimmest, c[0]);
+    });
+  EXPECT_GT(n, 100);
+  // The highlight makes the red channel vary by far more than the tolerance over the plate.
+  EXPECT_GT(brightest - dimmest, 40) << brightest << " " << dimmest;
+}
+
+TEST(vtkCatadioptricLighting, PointLightFallsOffAsItsAttenuationSays)
+{
+  const catar::Vec3 light(0.02, -0.38, 0.95);
+  const std::array<double, 3> white{ 1.0, 1.0, 1.0 }, globalAmbient{ 0.2, 0.2, 0.2 };
+  const HandMaterial m{ 0.2, 0.9, 0.2, 20.0, { 0.7, 0.6, 0.5 } };
+  std::vector<double> near, far; // red at the points nearest to and farthest from the light
+  for (const std::array<double, 3> att :
+    { std::array<double, 3>{ 1, 0, 0 }, std::array<double, 3>{ 0.5, 2.0, 30.0 } })
+  {
+    vtkNew<vtkCatadioptricLighting> lighting;
+    lighting->AddPointLight(
+      light.x(), light.y(), light.z(), white[0], white[1], white[2], att[0], att[1], att[2]);
+    lighting->SetDiffuseColor(m.diffuseColor[0], m.diffuseColor[1], m.diffuseColor[2]);
+    lighting->SetAmbient(m.ka);
+    lighting->SetDiffuse(m.kd);
+    lighting->SetSpecular(m.ks);
+    lighting->SetSpecularPower(m.shininess);
+    lighting->ShadowsOff();
+    EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 0, 1, 0 }));
+    double nearest = 1e9, farthest = 0, redNear = 0, redFar = 0;
+    const int n = ForEachLitPoint(lighting,
+      [&](const catar::Vec3& p, const catar::Vec3& viewer, const std::array<double, 3>& c) {
+        const double d = (light - p).norm();
+        const double a = 1.0 / (att[0] + att[1] * d + att[2] * d * d);
+        const auto expected =
+          HandPhong(p, catar::Vec3(0, 0, 1), viewer, (light - p) / d, a, white, globalAmbient, m);
+        for (int k = 0; k < 3; ++k)
+        {
+          EXPECT_NEAR(c[k], expected[k], 1.0) << "channel " << k << " at " << p.transpose();
+        }
+        if (d < nearest)
+        {
+          nearest = d;
+          redNear = c[0];
+        }
+        if (d > farthest)
+        {
+          farthest = d;
+          redFar = c[0];
+        }
+      });
+    EXPECT_GT(n, 100);
+    near.push_back(redNear);
+    far.push_back(redFar);
+  }
+  // With fall-off the far points lose most of their light, the near ones less.
+  EXPECT_LT(far[1], 0.6 * far[0]) << far[0] << " " << far[1];
+  EXPECT_GT(near[0] - near[1], 5.0);
+}
+
+TEST(vtkCatadioptricLighting, RemovingOneKindKeepsTheOthers)
+{
+  vtkNew<vtkCatadioptricLighting> lighting;
+  // Dim lights, so that no channel saturates and each light shows.
+  lighting->AddSpotLight(0.2, -0.2, 1.3, 0.0, -0.4, 0.8, 30, 0.2, 0.2, 0.2);
+  lighting->AddSpotLight(-0.2, -0.2, 1.3, 0.0, -0.4, 0.8, 45, 0.2, 0, 0);
+  lighting->AddPointLight(0.0, -0.4, 0.95, 0, 0.3, 0, 1, 0, 0);
+  lighting->AddDirectionalLight(0, -1, 1, 0, 0, 0.2);
+  vtkNew<vtkLight> spot; // positional, cone below 90: a spot added as a vtkLight
+  spot->SetPositional(true);
+  spot->SetConeAngle(20);
+  spot->SetPosition(0.1, -0.4, 1.0);
+  spot->SetFocalPoint(0.0, -0.4, 0.8);
+  spot->SetIntensity(0.2);
+  lighting->AddLight(spot);
+  vtkNew<vtkLight> sun; // not positional: directional
+  sun->SetPosition(1, 0, 1);
+  sun->SetIntensity(0.2);
+  lighting->AddLight(sun);
+  EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 3, 1, 2 }));
+
+  // Bad values are errors that add nothing.
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(lighting);
+  lighting->AddPointLight(0, 0, 1, 1, 1, 1, 0, 0, 0);
+  lighting->AddPointLight(0, 0, 1, 1, 1, 1, 1, -1, 0);
+  lighting->AddDirectionalLight(0, 0, 0, 1, 1, 1);
+  EXPECT_EQ(errors->Count, 3);
+  EXPECT_NE(errors->Last.find("direction"), std::string::npos) << errors->Last;
+  EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 3, 1, 2 }));
+
+  // The output after removing the point lights is that of a filter with the others only.
+  ForEachLitPoint(
+    lighting, [](const catar::Vec3&, const catar::Vec3&, const std::array<double, 3>&) {});
+  vtkSmartPointer<vtkDataArray> before = vtkSmartPointer<vtkDataArray>::Take(
+    lighting->GetOutput()->GetPointData()->GetArray("Colors")->NewInstance());
+  before->DeepCopy(lighting->GetOutput()->GetPointData()->GetArray("Colors"));
+  lighting->RemoveAllPointLights();
+  EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 3, 0, 2 }));
+  lighting->Update();
+  vtkNew<vtkCatadioptricLighting> others;
+  others->AddSpotLight(0.2, -0.2, 1.3, 0.0, -0.4, 0.8, 30, 0.2, 0.2, 0.2);
+  others->AddSpotLight(-0.2, -0.2, 1.3, 0.0, -0.4, 0.8, 45, 0.2, 0, 0);
+  others->AddDirectionalLight(0, -1, 1, 0, 0, 0.2);
+  others->AddLight(spot);
+  others->AddLight(sun);
+  ForEachLitPoint(
+    others, [](const catar::Vec3&, const catar::Vec3&, const std::array<double, 3>&) {});
+  vtkDataArray* after = lighting->GetOutput()->GetPointData()->GetArray("Colors");
+  vtkDataArray* expected = others->GetOutput()->GetPointData()->GetArray("Colors");
+  ASSERT_EQ(after->GetNumberOfTuples(), expected->GetNumberOfTuples());
+  int changed = 0;
+  for (vtkIdType i = 0; i < after->GetNumberOfTuples(); ++i)
+  {
+    EXPECT_EQ(ColorAt(after, i), ColorAt(expected, i)) << i;
+    changed += ColorAt(after, i) != ColorAt(before, i);
+  }
+  EXPECT_GT(changed, 50); // the green point light was seen, and is gone
+
+  lighting->RemoveAllSpotLights();
+  EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 0, 0, 2 }));
+  lighting->AddPointLight(0.0, -0.4, 0.95, 0, 0.3, 0, 1, 0, 0);
+  lighting->RemoveAllDirectionalLights();
+  EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 0, 1, 0 }));
+  lighting->RemoveAllLights();
+  EXPECT_EQ(Kinds(lighting), (std::array<int, 3>{ 0, 0, 0 }));
+  EXPECT_EQ(errors->Count, 3);
+}
+
+TEST(vtkCatadioptricLighting, OutputRecordsTheLighting)
+{
+  // A box face colour per cell named Colors: the lit Colors replace them, so the output keeps
+  // them as BaseColors and the record names that.
+  vtkNew<vtkCatadioptricLighting> lighting;
+  lighting->AddSpotLight(0.2, -0.2, 1.3, 0.0, -0.4, 0.8, 30, 1, 0.5, 0.25);
+  lighting->AddPointLight(0.0, -0.4, 0.95, 0, 1, 0, 1, 2, 3);
+  lighting->AddDirectionalLight(0, -1, 1, 0, 0, 1);
+  vtkNew<vtkLight> off;
+  off->SwitchOff();
+  lighting->AddLight(off);
+  lighting->SetShadingModeToFlat();
+  lighting->ShadowsOff();
+  lighting->TwoSidedLightingOff();
+  lighting->SetGlobalAmbient(0.1, 0.2, 0.3);
+  lighting->SetEmission(0.01, 0.02, 0.03);
+  lighting->SetSpecular(0.4);
+  lighting->SetSpecularPower(17);
+  lighting->SetOpacity(0.75);
+  lighting->GetProperty()->SetAmbientColor(0.9, 0.8, 0.7);
+  vtkNew<vtkCatadioptricCamera> cam;
+  catar_test::SetSmallDemoCamera(cam);
+  auto plate = Plate(-0.15, 0.15, -0.55, -0.25, 0.80, 4);
+  vtkNew<vtkUnsignedCharArray> faces;
+  faces->SetName("Colors");
+  faces->SetNumberOfComponents(3);
+  for (vtkIdType c = 0; c < plate->GetNumberOfCells(); ++c)
+  {
+    faces->InsertNextTuple3(10 * c, 200, 100);
+  }
+  plate->GetCellData()->AddArray(faces);
+  vtkNew<vtkCatadioptricProjection> proj;
+  proj->SetCamera(cam);
+  proj->SetInputData(plate);
+  lighting->SetInputConnection(proj->GetOutputPort());
+  lighting->Update();
+  vtkPolyData* out = lighting->GetOutput();
+  ASSERT_TRUE(vtkCatadioptricLighting::HasLightingRecord(out->GetFieldData()));
+  vtkDataArray* kept = out->GetCellData()->GetArray("BaseColors");
+  ASSERT_NE(kept, nullptr);
+  EXPECT_EQ(ColorAt(kept, 3), (std::array<double, 3>{ 30, 200, 100 }));
+
+  vtkNew<vtkCatadioptricLighting> copy;
+  ASSERT_TRUE(copy->ReadFromFieldData(out->GetFieldData()));
+  EXPECT_EQ(copy->GetShadingMode(), vtkCatadioptricLighting::FLAT);
+  EXPECT_FALSE(copy->GetShadows());
+  EXPECT_FALSE(copy->GetTwoSidedLighting());
+  EXPECT_EQ(copy->GetGlobalAmbient()[2], 0.3);
+  EXPECT_EQ(copy->GetEmission()[1], 0.02);
+  EXPECT_STREQ(copy->GetInputColorArrayName(), "BaseColors");
+  vtkProperty* p = copy->GetProperty();
+  EXPECT_EQ(p->GetSpecular(), 0.4);
+  EXPECT_EQ(p->GetSpecularPower(), 17);
+  EXPECT_EQ(p->GetOpacity(), 0.75);
+  EXPECT_EQ(p->GetAmbientColor()[1], 0.8);
+  // The lights that are on, as the shading reads them, value for value.
+  const auto a = vtkCatadioptricLightingSupport::ConvertLights(lighting->GetLights());
+  const auto b = vtkCatadioptricLightingSupport::ConvertLights(copy->GetLights());
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  for (std::size_t k = 0; k < a.size(); ++k)
+  {
+    EXPECT_EQ(a[k].kind, b[k].kind);
+    EXPECT_EQ(a[k].position, b[k].position);
+    EXPECT_EQ(a[k].focalPoint, b[k].focalPoint);
+    EXPECT_EQ(a[k].diffuse, b[k].diffuse);
+    EXPECT_EQ(a[k].specular, b[k].specular);
+    EXPECT_EQ(a[k].ambient, b[k].ambient);
+    EXPECT_EQ(a[k].coneAngle, b[k].coneAngle);
+    EXPECT_EQ(a[k].attenuation, b[k].attenuation);
+  }
+
+  // No base colour array: the record names none (the lit Colors are no base colours).
+  lighting->SetInputColorArrayName("NoSuchArray");
+  lighting->Update();
+  ASSERT_TRUE(copy->ReadFromFieldData(lighting->GetOutput()->GetFieldData()));
+  EXPECT_STREQ(copy->GetInputColorArrayName(), "");
+  // A malformed record reads as none, and leaves the filter as it was.
+  vtkNew<vtkFieldData> bad;
+  bad->DeepCopy(out->GetFieldData());
+  vtkNew<vtkDoubleArray> wrong;
+  wrong->SetName("LightingSettings");
+  wrong->SetNumberOfComponents(3);
+  wrong->InsertNextTuple3(1, 1, 1);
+  bad->AddArray(wrong);
+  EXPECT_TRUE(vtkCatadioptricLighting::HasLightingRecord(bad));
+  EXPECT_FALSE(copy->ReadFromFieldData(bad));
+  EXPECT_EQ(copy->GetShadingMode(), vtkCatadioptricLighting::FLAT);
+  EXPECT_FALSE(vtkCatadioptricLighting::HasLightingRecord(plate->GetFieldData()));
 }

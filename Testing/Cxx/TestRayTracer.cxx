@@ -33,6 +33,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -392,4 +393,96 @@ TEST(vtkCatadioptricRayTracer, BadInputGivesErrors)
     EXPECT_EQ(errors->Count, 3);
     EXPECT_NE(errors->Last.find("NaN"), std::string::npos) << errors->Last;
   }
+}
+
+// The lighting filter's output carries its lighting: the tracer given that output lights it as
+// SetMeshLighting with the filter lights the raw mesh, pixel for pixel, for every shading mode;
+// with UseInputLighting off it is drawn unlit; a malformed record is an error.
+TEST(vtkCatadioptricRayTracer, LightingRecordLightsAsSetMeshLightingDoes)
+{
+  auto camera = DemoCamera();
+  auto box = Box(catar::Vec3(-0.01, -0.37, 0.82), catar::Vec3(0.29, -0.25, 0.91));
+  vtkNew<vtkCatadioptricProjection> projection;
+  projection->SetCamera(camera);
+  projection->SetInputData(box);
+  vtkNew<vtkCatadioptricLighting> lighting;
+  lighting->SetInputConnection(projection->GetOutputPort());
+  lighting->AddSpotLight(0.3, -0.1, 1.1, 0.14, -0.31, 0.86, 40, 1.0, 0.9, 0.8);
+  lighting->AddPointLight(-0.1, -0.2, 1.0, 0.6, 0.6, 1.0, 1.0, 0.5, 4.0);
+  lighting->AddDirectionalLight(0.2, 0.3, 1.0, 0.3, 0.4, 0.3);
+  lighting->SetGlobalAmbient(0.1, 0.15, 0.2);
+  lighting->SetEmission(0.05, 0.0, 0.0);
+  lighting->SetSpecular(0.4);
+  lighting->SetSpecularPower(15);
+  lighting->TwoSidedLightingOff();
+  lighting->GetProperty()->SetAmbientColor(0.9, 1.0, 0.8);
+  for (int mode : { vtkCatadioptricLighting::GOURAUD, vtkCatadioptricLighting::FLAT,
+         vtkCatadioptricLighting::NONE })
+  {
+    lighting->SetShadingMode(mode);
+    lighting->Update();
+    vtkNew<catar_test::ErrorCounter> errors;
+    vtkNew<vtkCatadioptricRayTracer> recorded; // the lighting filter's output, no SetMeshLighting
+    errors->Watch(recorded);
+    recorded->SetCamera(camera);
+    recorded->AddMeshConnection(lighting->GetOutputPort());
+    recorded->Update();
+    vtkNew<vtkCatadioptricRayTracer> given; // the raw box, SetMeshLighting
+    errors->Watch(given);
+    given->SetCamera(camera);
+    given->AddMeshData(box);
+    given->SetMeshLighting(0, lighting);
+    given->Update();
+    ASSERT_EQ(errors->Count, 0) << errors->Last;
+    vtkNew<vtkCatadioptricRayTracer> unlit; // the output, its lit Colors drawn as they are
+    unlit->SetCamera(camera);
+    unlit->AddMeshConnection(lighting->GetOutputPort());
+    unlit->UseInputLightingOff();
+    unlit->Update();
+
+    int dims[3];
+    recorded->GetOutput()->GetDimensions(dims);
+    long object = 0, differ = 0, unlitDiffer = 0;
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        const unsigned char* a = Pixel(recorded->GetOutput(), x, y);
+        const unsigned char* b = Pixel(given->GetOutput(), x, y);
+        const unsigned char* c = Pixel(unlit->GetOutput(), x, y);
+        object += b[0] || b[1] || b[2];
+        differ += !std::equal(a, a + 4, b);
+        unlitDiffer += !std::equal(c, c + 4, b);
+      }
+    }
+    std::cout << "[ tracer   ] lighting record, shading mode " << mode << ": " << object
+              << " object pixels, " << differ << " differ from SetMeshLighting's, " << unlitDiffer
+              << " unlit" << std::endl;
+    EXPECT_GT(object, 2000);
+    EXPECT_EQ(differ, 0) << "shading mode " << mode;
+    if (mode != vtkCatadioptricLighting::NONE)
+    {
+      // The lighting filter's colours at vertices or centroids differ from the exact ones.
+      EXPECT_GT(unlitDiffer, object / 4) << "shading mode " << mode;
+    }
+  }
+
+  // A malformed record: an error that says so.
+  vtkNew<vtkPolyData> bad;
+  bad->ShallowCopy(lighting->GetOutput());
+  vtkNew<vtkFieldData> fd;
+  fd->DeepCopy(lighting->GetOutput()->GetFieldData());
+  fd->RemoveArray("LightingLights");
+  bad->SetFieldData(fd);
+  vtkNew<vtkCatadioptricRayTracer> tracer;
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(tracer);
+  tracer->SetCamera(camera);
+  tracer->AddMeshData(bad);
+  tracer->Update();
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Last.find("malformed lighting record"), std::string::npos) << errors->Last;
+  tracer->UseInputLightingOff();
+  tracer->Update();
+  EXPECT_EQ(errors->Count, 1) << errors->Last;
 }
