@@ -444,15 +444,18 @@ TEST(vtkCatadioptricRemesher, BadInputIsRepairedOrRefused)
       EXPECT_TRUE(std::isfinite(bounds[i]));
     }
   }
-  // Pixel mode without a camera: a clear error.
+  // Pixel mode without a camera object or file takes the panel camera (the demo camera); a bad
+  // panel value there is a clear error that names it.
   {
     vtkNew<vtkCatadioptricRemesher> remesher;
     errors->Watch(remesher);
     const double size[3] = { 0.1, 0.1, 0.1 }, centre[3] = { 0, 0, 1 };
     remesher->SetInputData(ColouredBox(size, centre));
     remesher->SetModeToPixelTolerance();
+    remesher->SetPrincipalPoint(std::nan(""), 0.0);
     remesher->Update();
     EXPECT_EQ(errors->Count, 2);
+    EXPECT_NE(errors->Last.find(": Principal Point"), std::string::npos) << errors->Last;
   }
 }
 

@@ -350,11 +350,15 @@ TEST(vtkCatadioptricRayTracer, BadInputGivesErrors)
 {
   vtkNew<catar_test::ErrorCounter> errors;
   {
-    vtkNew<vtkCatadioptricRayTracer> tracer; // no camera
+    vtkNew<vtkCatadioptricRayTracer> tracer; // no camera object or file: the panel camera's
     errors->Watch(tracer);
     tracer->AddMeshData(Wall(-0.5, -0.1, 0.1, 0.9, 1.1));
     tracer->Update();
+    EXPECT_EQ(errors->Count, 0) << errors->Last;
+    tracer->SetFocalLength(0, 1000); // a bad panel value: an error naming it
+    tracer->Update();
     EXPECT_EQ(errors->Count, 1);
+    EXPECT_NE(errors->Last.find(": Focal Length"), std::string::npos) << errors->Last;
   }
   {
     vtkNew<vtkCatadioptricRayTracer> tracer; // a texture index with no texture
