@@ -6,26 +6,46 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 
 namespace catar
 {
 struct RayScene::Internals
 {
   RTCDevice Device = nullptr;
+  int DeviceThreads = -1; // the threads the device was made with
   RTCScene Scene = nullptr;
 
-  void Release()
+  void ReleaseScene()
   {
     if (this->Scene)
     {
       rtcReleaseScene(this->Scene);
       this->Scene = nullptr;
     }
+  }
+  void Release()
+  {
+    this->ReleaseScene();
     if (this->Device)
     {
       rtcReleaseDevice(this->Device);
       this->Device = nullptr;
     }
+  }
+  // The device, made again only when the number of build threads changes.
+  bool Prepare(int threads)
+  {
+    this->ReleaseScene();
+    if (this->Device && this->DeviceThreads == threads)
+    {
+      return true;
+    }
+    this->Release();
+    const std::string config = "threads=" + std::to_string(threads) + ",verbose=0";
+    this->Device = rtcNewDevice(config.c_str());
+    this->DeviceThreads = threads;
+    return this->Device != nullptr;
   }
   ~Internals() { this->Release(); }
 };
@@ -39,42 +59,73 @@ RayScene::~RayScene() = default;
 
 bool RayScene::Build(const std::vector<float>& points, const std::vector<std::uint32_t>& triangles)
 {
-  this->Internal->Release();
+  if (points.size() % 3 != 0 || triangles.size() % 3 != 0)
+  {
+    this->Internal->ReleaseScene();
+    this->Error = "points and triangles must come in threes";
+    this->SceneSize = 0.0;
+    this->NumberOfTriangles = 0;
+    return false;
+  }
+  MeshView mesh;
+  mesh.points = points.data();
+  mesh.pointCount = points.size() / 3;
+  mesh.triangles = triangles.data();
+  mesh.triangleCount = triangles.size() / 3;
+  return this->Build(std::vector<MeshView>{ mesh });
+}
+
+bool RayScene::Build(const std::vector<MeshView>& meshes)
+{
+  Internals& in = *this->Internal;
+  in.ReleaseScene();
   this->Error.clear();
   this->SceneSize = 0.0;
   this->NumberOfTriangles = 0;
-  if (points.size() % 3 != 0 || triangles.size() % 3 != 0)
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  std::size_t triangleCount = 0;
+  for (const MeshView& mesh : meshes)
   {
-    this->Error = "points and triangles must come in threes";
+    const std::size_t nv = mesh.pointCount;
+    for (std::size_t i = 0; i < 3 * mesh.triangleCount; ++i)
+    {
+      if (mesh.triangles[i] >= nv)
+      {
+        this->Error = "a triangle refers to a vertex that does not exist";
+        return false;
+      }
+    }
+    for (std::size_t i = 0; i < nv; ++i)
+    {
+      const float* p = mesh.points + 3 * i;
+      for (int k = 0; k < 3; ++k)
+      {
+        if (!std::isfinite(p[k]))
+        {
+          this->Error = "vertex coordinates contain NaN or Inf";
+          return false;
+        }
+        // Embree's bounds arithmetic (single precision) overflows and aborts on larger ones.
+        if (std::abs(p[k]) > kMaxCoordinate)
+        {
+          this->Error = "vertex coordinates beyond +-1e12 cannot be ray traced (a coordinate is " +
+            std::to_string(p[k]) + ")";
+          return false;
+        }
+      }
+      const Vec3 q(p[0], p[1], p[2]);
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    triangleCount += mesh.triangleCount;
+  }
+  if (meshes.size() > std::numeric_limits<std::uint32_t>::max() / 2)
+  {
+    this->Error = "too many meshes";
     return false;
   }
-  const std::size_t nv = points.size() / 3;
-  for (std::uint32_t id : triangles)
-  {
-    if (id >= nv)
-    {
-      this->Error = "a triangle refers to a vertex that does not exist";
-      return false;
-    }
-  }
-  for (float v : points)
-  {
-    if (!std::isfinite(v))
-    {
-      this->Error = "vertex coordinates contain NaN or Inf";
-      return false;
-    }
-    // Embree's bounds arithmetic (single precision) overflows and aborts on larger ones.
-    if (std::abs(v) > kMaxCoordinate)
-    {
-      this->Error = "vertex coordinates beyond +-1e12 cannot be ray traced (a coordinate is " +
-        std::to_string(v) + ")";
-      return false;
-    }
-  }
-  Internals& in = *this->Internal;
-  in.Device = rtcNewDevice("threads=1,verbose=0");
-  if (!in.Device)
+  if (!in.Prepare(this->BuildThreads))
   {
     this->Error = "Embree: cannot create a device";
     return false;
@@ -83,43 +134,40 @@ bool RayScene::Build(const std::vector<float>& points, const std::vector<std::ui
   rtcSetSceneBuildQuality(in.Scene, RTC_BUILD_QUALITY_MEDIUM);
   // Watertight: rays through shared edges and vertices must not slip between triangles.
   rtcSetSceneFlags(in.Scene, RTC_SCENE_FLAG_ROBUST);
-  if (!triangles.empty())
+  for (std::size_t m = 0; m < meshes.size(); ++m)
   {
+    const MeshView& mesh = meshes[m];
+    if (mesh.triangleCount == 0)
+    {
+      continue; // geometry ids are the meshes' indices: empty ones leave theirs unused
+    }
     RTCGeometry geom = rtcNewGeometry(in.Device, RTC_GEOMETRY_TYPE_TRIANGLE);
     float* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.pointCount));
     std::uint32_t* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(geom,
-      RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), triangles.size() / 3));
+      RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangleCount));
     if (!v || !t)
     {
       rtcReleaseGeometry(geom);
       this->Error = "Embree: cannot allocate buffers";
-      in.Release();
+      in.ReleaseScene();
       return false;
     }
-    std::memcpy(v, points.data(), points.size() * sizeof(float));
-    std::memcpy(t, triangles.data(), triangles.size() * sizeof(std::uint32_t));
+    std::memcpy(v, mesh.points, 3 * mesh.pointCount * sizeof(float));
+    std::memcpy(t, mesh.triangles, 3 * mesh.triangleCount * sizeof(std::uint32_t));
     rtcCommitGeometry(geom);
-    rtcAttachGeometry(in.Scene, geom);
+    rtcAttachGeometryByID(in.Scene, geom, static_cast<unsigned int>(m));
     rtcReleaseGeometry(geom);
   }
   rtcCommitScene(in.Scene);
   if (rtcGetDeviceError(in.Device) != RTC_ERROR_NONE)
   {
     this->Error = "Embree: the scene could not be built";
-    in.Release();
+    in.ReleaseScene();
     return false;
   }
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-  Vec3 hi = -lo;
-  for (std::size_t i = 0; i < nv; ++i)
-  {
-    const Vec3 p(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  this->SceneSize = nv > 0 ? (hi - lo).norm() : 0.0;
-  this->NumberOfTriangles = triangles.size() / 3;
+  this->SceneSize = lo.x() <= hi.x() ? (hi - lo).norm() : 0.0;
+  this->NumberOfTriangles = triangleCount;
   return true;
 }
 
@@ -195,10 +243,66 @@ RayScene::Hit RayScene::Intersect(
   }
   result.hit = true;
   result.t = rh.ray.tfar;
+  result.mesh = rh.hit.geomID;
   result.triangle = rh.hit.primID;
   result.u = rh.hit.u;
   result.v = rh.hit.v;
   return result;
+}
+
+void RayScene::Intersect(std::size_t n, const Ray* rays, Hit* hits, bool coherent) const
+{
+  if (!this->Internal->Scene || this->NumberOfTriangles == 0)
+  {
+    std::fill_n(hits, n, Hit());
+    return;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags =
+    coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  constexpr std::size_t kChunk = 64;
+  RTCRayHit stream[kChunk];
+  for (std::size_t first = 0; first < n; first += kChunk)
+  {
+    const std::size_t m = std::min(kChunk, n - first);
+    for (std::size_t i = 0; i < m; ++i)
+    {
+      const Ray& r = rays[first + i];
+      RTCRayHit& rh = stream[i];
+      rh.ray.org_x = r.origin[0];
+      rh.ray.org_y = r.origin[1];
+      rh.ray.org_z = r.origin[2];
+      rh.ray.dir_x = r.direction[0];
+      rh.ray.dir_y = r.direction[1];
+      rh.ray.dir_z = r.direction[2];
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.time = 0.0f;
+      rh.ray.mask = 0xFFFFFFFFu;
+      rh.ray.id = static_cast<unsigned int>(i);
+      rh.ray.flags = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(
+      this->Internal->Scene, &context, stream, static_cast<unsigned int>(m), sizeof(RTCRayHit));
+    for (std::size_t i = 0; i < m; ++i)
+    {
+      const RTCRayHit& rh = stream[i];
+      Hit& h = hits[first + i];
+      h = Hit();
+      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+      {
+        h.hit = true;
+        h.t = rh.ray.tfar;
+        h.mesh = rh.hit.geomID;
+        h.triangle = rh.hit.primID;
+        h.u = rh.hit.u;
+        h.v = rh.hit.v;
+      }
+    }
+  }
 }
 
 int TraceShadows(

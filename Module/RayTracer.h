@@ -9,9 +9,14 @@
 // straight-edged 2D triangle and no painter order is involved, so the fast path's image can be
 // compared with this one pixel by pixel (ImageMetrics.h).
 //
-// Usage: SetScene() once per change of the meshes, lights or textures; PrepareRays() once per
-// camera (it caches the back-projected rays); then RenderRows() for any split of the rows into
-// bands, from several threads at once.
+// Usage: SetScene() at every change of the meshes, lights or textures (meshes given again by the
+// same pointer keep their acceleration structure: a light, a colour or a material that changes
+// costs no rebuild); PrepareRays() at every change of the camera (the rays are back-projected in
+// the camera frame and kept while the lens, the mirror, the image size and the samples stay: a
+// new pose only moves them); then RenderRows() for any split of the rows into bands, from several
+// threads at once. The image is traced in tiles of kTile x kTile pixels: a tile whose rays cannot
+// reach the scene's bounding sphere (a cone of rays from a ball of origins, tested once) is
+// skipped whole, the rays of the others are traced together (Embree's streams).
 #ifndef catarRayTracer_h
 #define catarRayTracer_h
 
@@ -22,6 +27,8 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,16 +85,44 @@ struct RayTraceStatistics
 class RayTracer
 {
 public:
+  /// Pixels a side of the tiles the image is traced in.
+  static constexpr int kTile = 8;
+
+  /// Runs body(begin, end) over disjoint ranges that cover [0, n), possibly from several threads
+  /// at once, and returns when all are done (e.g. vtkSMPTools::For). Empty: one range, on the
+  /// calling thread.
+  using ParallelFor =
+    std::function<void(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body)>;
+
   /// Builds the scene. Returns false with GetError() on invalid input (indices out of range,
   /// NaN/Inf points, array sizes that do not match); nothing is kept then. Textures are not
-  /// owned and must outlive the renders.
+  /// owned and must outlive the renders. A mesh given by the same pointer as at the last call
+  /// that succeeded, in the same place of the list, is taken to have the same points and
+  /// triangles: its part of the acceleration structure is kept (when every mesh is such, nothing
+  /// is rebuilt); its other members (colours, normals, texture coordinates, shading, material,
+  /// opacity) are read again at every render, and may be changed between renders, not during
+  /// one. Give a new object for new points or triangles. `buildThreads`: as
+  /// RayScene::SetBuildThreads.
+  bool SetScene(const std::vector<std::shared_ptr<const TraceMesh>>& meshes,
+    const std::vector<TextureView>& textures, const std::vector<LightSource>& lights,
+    const Vec3& globalAmbient, bool shadows, int buildThreads = 1);
+  /// The same with copies of `meshes` (always rebuilt).
   bool SetScene(const std::vector<TraceMesh>& meshes, const std::vector<TextureView>& textures,
     const std::vector<LightSource>& lights, const Vec3& globalAmbient, bool shadows);
 
-  /// Back-projects the N x N samples (N = samples, 1..8) of every pixel of `projector`'s image
-  /// and keeps the reflected rays (single precision, as Embree traces). False with GetError()
-  /// for an invalid camera.
-  bool PrepareRays(const Projector& projector, int samples);
+  /// Times the acceleration structure was built (by SetScene calls that succeeded).
+  std::size_t GetNumberOfBuilds() const { return this->Builds; }
+
+  /// Sets the camera: back-projects the N x N samples (N = samples, 1..8) of every pixel of
+  /// `projector`'s image in the camera frame and keeps the reflected rays (single precision, as
+  /// Embree traces), unless the rays kept are those of the same lens, mirror, image size and
+  /// samples: then only the pose is taken (the rays are moved into the world at render time).
+  /// `parallel` splits the back projection by rows of tiles. False with GetError() for an
+  /// invalid camera.
+  bool PrepareRays(const Projector& projector, int samples, const ParallelFor& parallel = {});
+
+  /// Times the rays were back-projected (by PrepareRays calls that succeeded).
+  std::size_t GetNumberOfRayPreparations() const { return this->RayPreparations; }
 
   /// Renders rows [y0, y1) of `target`, which holds the camera frame (RGBA8, the camera's image
   /// size): where the reflected ray of a sample hits the scene, its shaded colour is composited
@@ -96,47 +131,87 @@ public:
   /// the visible triangle of the pixel's centre-most sample: meshIndex * 2^32 + triangle id, or
   /// -1. `pathLengths` (optional, one float per pixel, addressed like ids) receives that
   /// sample's distance from the mirror to the surface it meets, or NaN. Thread-safe for disjoint
-  /// row ranges. `statistics` (optional) is added to.
+  /// row ranges (fastest when they begin and end on multiples of kTile). `statistics`
+  /// (optional) is added to.
   void RenderRows(const ImageView& target, RasterId* ids, std::ptrdiff_t idRowStride, int y0,
     int y1, RayTraceStatistics* statistics = nullptr, float* pathLengths = nullptr) const;
+
+  ///@{
+  /// Skip the tiles whose rays cannot reach the scene's bounding sphere (default on; off traces
+  /// every tile, for tests: the picture is the same).
+  void SetTileCulling(bool on) { this->TileCulling = on; }
+  bool GetTileCulling() const { return this->TileCulling; }
+  ///@}
 
   const std::string& GetError() const { return this->Error; }
   int GetWidth() const { return this->Width; }
   int GetHeight() const { return this->Height; }
-  std::size_t GetNumberOfTriangles() const { return this->Triangles.size(); }
+  std::size_t GetNumberOfTriangles() const { return this->Scene.GetNumberOfTriangles(); }
 
 private:
-  struct GlobalTriangle
+  using Ray = RayScene::Ray;
+
+  /// What the tile culling knows of a tile's rays (camera frame): every origin lies within
+  /// `radius` of `centre`, every direction within `angle` of the unit `axis`.
+  struct Tile
   {
-    std::uint32_t mesh;
-    std::uint32_t local;
-  };
-  struct Ray
-  {
-    float origin[3];
-    float direction[3];
+    float centre[3];
+    float radius;
+    float axis[3];
+    float angle;
+    std::uint32_t rays; ///< samples of the tile that reflect off the mirror
   };
 
-  /// Colour (RGBA, [0,1]) of the hit of ray `r` with global triangle `t` at barycentric (u, v).
+  /// Colour (RGBA, [0,1]) of the hit of ray (origin, direction) at `hit`.
   void ShadeHit(const Vec3& origin, const Vec3& direction, const RayScene::Hit& hit, float rgba[4],
     RayTraceStatistics& statistics) const;
+  /// Back-projects tile rows [r0, r1) of the kept camera.
+  void BackProjectTileRows(const Projector& projector, int r0, int r1);
+  /// Can a ray of the tile reach the scene's bounding sphere (camera frame: centre c, radius r)?
+  static bool TileMeetsSphere(const Tile& tile, const Vec3& c, double r);
+  /// A tile's rays in the world, hits, and which ray each sample has (-1: none traced).
+  struct TileBuffers
+  {
+    std::vector<Ray> rays;
+    std::vector<std::int16_t> which;
+    std::vector<RayScene::Hit> hits;
+  };
+  /// Renders rows [y0, y1) of the tiles' column tx (rows of one tile).
+  void RenderTile(const ImageView& target, RasterId* ids, std::ptrdiff_t idRowStride, int tx,
+    int y0, int y1, TileBuffers& buffers, RayTraceStatistics& statistics, float* pathLengths) const;
 
-  std::vector<TraceMesh> Meshes;
+  std::vector<std::shared_ptr<const TraceMesh>> Meshes;
   std::vector<TextureView> Textures;
   LightSet Lights;
   Vec3 GlobalAmbient = Vec3::Zero();
   bool Shadows = false;
-  std::vector<GlobalTriangle> Triangles;
   RayScene Scene;
+  std::size_t Builds = 0;
   Vec3 BoundsMin = Vec3::Zero();
   Vec3 BoundsMax = Vec3::Zero();
+  Vec3 SphereCentre = Vec3::Zero(); ///< world; encloses the bounding box
+  double SphereRadius = 0.0;
   bool HasScene = false;
+  bool TileCulling = true;
 
+  // The camera: rays in the camera frame for the lens, mirror, size and samples kept, and the
+  // pose that moves them into the world.
   int Width = 0;
   int Height = 0;
   int Samples = 1;
-  std::vector<std::uint8_t> RayValid; ///< per sample: 1 when the ray reflects off the mirror
-  std::vector<Ray> Rays;              ///< per sample
+  int TilesX = 0;
+  int TilesY = 0;
+  Intrinsics RaysIntrinsics;
+  Distortion RaysDistortion;
+  MirrorDescription RaysMirror;
+  std::size_t RayPreparations = 0;
+  Mat3 CameraToWorld = Mat3::Identity(); ///< R^T
+  Vec3 CameraCentre = Vec3::Zero();      ///< world
+  Mat3 WorldToCamera = Mat3::Identity(); ///< R
+  Vec3 Translation = Vec3::Zero();       ///< t
+  std::vector<std::uint8_t> RayValid;    ///< per sample: 1 when the ray reflects off the mirror
+  std::vector<Ray> Rays;                 ///< per sample, camera frame
+  std::vector<Tile> Tiles;               ///< TilesX per tile row
   std::string Error;
 };
 

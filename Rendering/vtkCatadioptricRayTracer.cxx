@@ -29,9 +29,14 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -80,14 +85,45 @@ vtkCatadioptricCamera* vtkCatadioptricRayTracer::ResolveCamera(vtkInformation* o
   return camera;
 }
 
+namespace
+{
+// A mesh of port 1 as the tracer has it, and what it was made from. The geometry (points,
+// triangles, their cell ids) is kept while the mesh is the same object and neither it, its
+// points, its cells nor its OriginalCellId were modified; the arrays read for shading (colours,
+// normals, texture coordinates) while, in addition, its point and cell data and the settings that
+// choose them are the same. The tracer keeps the acceleration structure of a mesh given again as
+// the same TraceMesh object.
+struct MeshEntry
+{
+  // Geometry.
+  vtkWeakPointer<vtkPolyData> Mesh;
+  bool HasMesh = false;
+  vtkMTimeType MeshTime = 0; // the mesh object's own (SetPoints, SetPolys, Modified)
+  vtkPoints* Points = nullptr;
+  vtkMTimeType PointsTime = 0;
+  vtkCellArray* Cells[3] = { nullptr, nullptr, nullptr }; // verts, lines, polys
+  vtkMTimeType CellsTime[3] = { 0, 0, 0 };
+  vtkDataArray* Original = nullptr;
+  vtkMTimeType OriginalTime = 0;
+  std::vector<vtkIdType> TriangleCells; // per triangle, its cell
+  // Shading arrays.
+  bool HasArrays = false;
+  vtkMTimeType PointDataTime = 0;
+  vtkMTimeType CellDataTime = 0;
+  std::string ColorName;
+  float Solid[4] = { 0, 0, 0, 0 };
+  bool Smooth = false;
+  bool Textured = false;
+
+  std::shared_ptr<catar::TraceMesh> Trace;
+};
+} // namespace
+
 struct vtkCatadioptricRayTracer::Internals
 {
   catar::RayTracer Tracer;
   std::vector<vtkSmartPointer<vtkCatadioptricLighting>> Lightings;
-  // The rays are kept while the camera and the sample count are unchanged.
-  vtkMTimeType RaysCameraTime = 0;
-  vtkCatadioptricCamera* RaysCamera = nullptr;
-  int RaysSamples = 0;
+  std::vector<MeshEntry> Meshes; // per connection of port 1, from the last update
 };
 
 namespace
@@ -138,6 +174,16 @@ void vtkCatadioptricRayTracer::RemoveAllMeshLightings()
     this->Internal->Lightings.clear();
     this->Modified();
   }
+}
+
+vtkIdType vtkCatadioptricRayTracer::GetNumberOfSceneBuilds()
+{
+  return static_cast<vtkIdType>(this->Internal->Tracer.GetNumberOfBuilds());
+}
+
+vtkIdType vtkCatadioptricRayTracer::GetNumberOfRayBackProjections()
+{
+  return static_cast<vtkIdType>(this->Internal->Tracer.GetNumberOfRayPreparations());
 }
 
 vtkMTimeType vtkCatadioptricRayTracer::GetMTime()
@@ -191,10 +237,11 @@ struct SceneLighting
   bool shadows = false;
 };
 
-// The tracer's mesh of a VTK mesh: triangles (polygons as fans), colours, normals, texture
-// coordinates, lighting. Returns "" or what is wrong, to follow "Mesh <index>".
-std::string MakeTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
-  const MeshSettings& in, catar::TraceMesh& tm, SceneLighting& scene)
+// The tracer's mesh of a VTK mesh in `entry`: triangles (polygons as fans), colours, normals,
+// texture coordinates (each made again only when what it is made from changed), lighting.
+// Returns "" or what is wrong, to follow "Mesh <index>".
+std::string UpdateTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
+  const MeshSettings& in, MeshEntry& entry, SceneLighting& scene)
 {
   std::string meshError;
   if (!vtkCatadioptricMeshCheck::Check(mesh, meshError))
@@ -207,32 +254,72 @@ std::string MakeTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
       " cells: VisibleTriangle ids hold cell ids below 2^32.";
   }
   const vtkIdType nPts = mesh->GetNumberOfPoints();
-  tm.points.resize(nPts);
-  for (vtkIdType i = 0; i < nPts; ++i)
-  {
-    double p[3];
-    mesh->GetPoint(i, p);
-    tm.points[i] = V3(p);
-  }
-  vtkDataArray* original = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
-  const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
-  std::vector<vtkIdType> triangleCells;
-  vtkCellArray* polys = mesh->GetPolys();
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
-  {
-    polys->GetCellAtId(c, ids);
-    catar::PolygonTriangles(ids->GetPointer(0), static_cast<std::size_t>(ids->GetNumberOfIds()),
-      [&](vtkIdType a, vtkIdType b, vtkIdType d) {
-        tm.triangles.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
-          static_cast<std::uint32_t>(d) });
-        triangleCells.push_back(firstCell + c);
-        tm.triangleIds.push_back(original
-            ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
-            : static_cast<catar::RasterId>(firstCell + c));
-      });
-  }
 
+  // Geometry: the same object, unmodified, with the same points, cells and original ids.
+  vtkPoints* points = mesh->GetPoints();
+  vtkCellArray* cells[3] = { mesh->GetVerts(), mesh->GetLines(), mesh->GetPolys() };
+  vtkDataArray* original = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
+  bool sameGeometry = entry.Trace && entry.HasMesh && entry.Mesh == mesh &&
+    entry.MeshTime == mesh->vtkObject::GetMTime() && entry.Points == points &&
+    entry.PointsTime == (points ? points->GetMTime() : 0) && entry.Original == original &&
+    entry.OriginalTime == (original ? original->GetMTime() : 0);
+  for (int k = 0; k < 3; ++k)
+  {
+    sameGeometry = sameGeometry && entry.Cells[k] == cells[k] &&
+      entry.CellsTime[k] == (cells[k] ? cells[k]->GetMTime() : 0);
+  }
+  if (!sameGeometry)
+  {
+    entry = MeshEntry();
+    entry.Trace = std::make_shared<catar::TraceMesh>();
+    catar::TraceMesh& tm = *entry.Trace;
+    tm.points.resize(nPts);
+    vtkCatadioptricParallel::For(0, nPts, 4096, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        double p[3];
+        points->GetPoint(i, p);
+        tm.points[i] = V3(p);
+      }
+    });
+    const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+    vtkCellArray* polys = mesh->GetPolys();
+    const vtkIdType nPolys = polys->GetNumberOfCells();
+    tm.triangles.reserve(static_cast<std::size_t>(nPolys));
+    entry.TriangleCells.reserve(static_cast<std::size_t>(nPolys));
+    tm.triangleIds.reserve(static_cast<std::size_t>(nPolys));
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < nPolys; ++c)
+    {
+      vtkIdType size;
+      const vtkIdType* pts;
+      polys->GetCellAtId(c, size, pts, ids);
+      catar::PolygonTriangles(
+        pts, static_cast<std::size_t>(size), [&](vtkIdType a, vtkIdType b, vtkIdType d) {
+          tm.triangles.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+            static_cast<std::uint32_t>(d) });
+          entry.TriangleCells.push_back(firstCell + c);
+          tm.triangleIds.push_back(original
+              ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
+              : static_cast<catar::RasterId>(firstCell + c));
+        });
+    }
+    entry.Mesh = mesh;
+    entry.HasMesh = true;
+    entry.MeshTime = mesh->vtkObject::GetMTime();
+    entry.Points = points;
+    entry.PointsTime = points ? points->GetMTime() : 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      entry.Cells[k] = cells[k];
+      entry.CellsTime[k] = cells[k] ? cells[k]->GetMTime() : 0;
+    }
+    entry.Original = original;
+    entry.OriginalTime = original ? original->GetMTime() : 0;
+  }
+  catar::TraceMesh& tm = *entry.Trace;
+
+  // What chooses the shading arrays.
   const char* colorName = lighting ? lighting->GetInputColorArrayName() : in.colorArrayName;
   float solid[4] = { static_cast<float>(in.color[0]), static_cast<float>(in.color[1]),
     static_cast<float>(in.color[2]), 1.0f };
@@ -244,39 +331,58 @@ std::string MakeTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
       solid[k] = static_cast<float>(d[k]);
     }
   }
-  const vtkCatadioptricColorArray colors(mesh, colorName, solid);
-  tm.color = catar::Vec3(solid[0], solid[1], solid[2]);
-  if (colors.HasArray())
+  const bool shaded = lighting && lighting->GetShadingMode() != vtkCatadioptricLighting::NONE;
+  const bool smooth = shaded && lighting->GetShadingMode() != vtkCatadioptricLighting::FLAT;
+  int texture = -1;
+  vtkDataArray* tcoords =
+    in.textureCount > 0 ? vtkCatadioptricImageSupport::TextureCoordinates(mesh) : nullptr;
+  if (tcoords)
   {
-    tm.colorSource = colors.IsPerPoint() ? catar::TraceMesh::ColorSource::Point
-                                         : catar::TraceMesh::ColorSource::Cell;
-    const std::size_t n = colors.IsPerPoint() ? tm.points.size() : tm.triangles.size();
-    tm.colors.resize(4 * n);
-    for (std::size_t i = 0; i < n; ++i)
+    std::string textureError;
+    if (!vtkCatadioptricImageSupport::TextureIndex(mesh, texture, textureError))
     {
-      if (colors.IsPerPoint())
-      {
-        colors.Get(static_cast<vtkIdType>(i), 0, &tm.colors[4 * i]);
-      }
-      else
-      {
-        colors.Get(0, triangleCells[i], &tm.colors[4 * i]);
-      }
+      return ": " + textureError;
+    }
+    if (texture >= static_cast<int>(in.textureCount))
+    {
+      return " asks for texture " + std::to_string(texture) + " but " +
+        std::to_string(in.textureCount) + " are connected.";
     }
   }
-  tm.opacity = in.opacity;
-  if (lighting && lighting->GetShadingMode() != vtkCatadioptricLighting::NONE)
+  const bool textured = tcoords && texture >= 0;
+  const bool sameArrays = entry.HasArrays &&
+    entry.PointDataTime == mesh->GetPointData()->GetMTime() &&
+    entry.CellDataTime == mesh->GetCellData()->GetMTime() &&
+    entry.ColorName == (colorName ? colorName : "") && std::equal(solid, solid + 4, entry.Solid) &&
+    entry.Smooth == smooth && entry.Textured == textured;
+  if (!sameArrays)
   {
-    vtkProperty* prop = lighting->GetProperty();
-    tm.shading = lighting->GetShadingMode() == vtkCatadioptricLighting::FLAT
-      ? catar::TraceMesh::Shading::Flat
-      : catar::TraceMesh::Shading::Smooth;
-    tm.material = vtkCatadioptricLightingSupport::ConvertProperty(prop, lighting->GetEmission());
-    tm.ambientFactor = prop->GetAmbient();
-    tm.diffuseFactor = prop->GetDiffuse();
-    tm.opacity *= prop->GetOpacity();
-    tm.twoSided = lighting->GetTwoSidedLighting();
-    if (tm.shading == catar::TraceMesh::Shading::Smooth)
+    const vtkCatadioptricColorArray colors(mesh, colorName, solid);
+    tm.colorSource = catar::TraceMesh::ColorSource::Solid;
+    tm.colors.clear();
+    if (colors.HasArray())
+    {
+      tm.colorSource = colors.IsPerPoint() ? catar::TraceMesh::ColorSource::Point
+                                           : catar::TraceMesh::ColorSource::Cell;
+      const std::size_t n = colors.IsPerPoint() ? tm.points.size() : tm.triangles.size();
+      tm.colors.resize(4 * n);
+      vtkCatadioptricParallel::For(
+        0, static_cast<vtkIdType>(n), 4096, [&](vtkIdType b, vtkIdType e) {
+          for (vtkIdType i = b; i < e; ++i)
+          {
+            if (colors.IsPerPoint())
+            {
+              colors.Get(i, 0, &tm.colors[4 * i]);
+            }
+            else
+            {
+              colors.Get(0, entry.TriangleCells[i], &tm.colors[4 * i]);
+            }
+          }
+        });
+    }
+    tm.normals.clear();
+    if (smooth)
     {
       vtkDataArray* normals = mesh->GetPointData()->GetNormals();
       if (normals && normals->GetNumberOfComponents() == 3)
@@ -301,6 +407,38 @@ std::string MakeTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
         tm.normals = vtkCatadioptricLightingSupport::VertexNormals(mesh);
       }
     }
+    tm.tcoords.clear();
+    if (textured)
+    {
+      tm.tcoords.resize(2 * static_cast<std::size_t>(nPts));
+      for (vtkIdType i = 0; i < nPts; ++i)
+      {
+        tm.tcoords[2 * i] = static_cast<float>(tcoords->GetComponent(i, 0));
+        tm.tcoords[2 * i + 1] = static_cast<float>(tcoords->GetComponent(i, 1));
+      }
+    }
+    entry.HasArrays = true;
+    entry.PointDataTime = mesh->GetPointData()->GetMTime();
+    entry.CellDataTime = mesh->GetCellData()->GetMTime();
+    entry.ColorName = colorName ? colorName : "";
+    std::copy(solid, solid + 4, entry.Solid);
+    entry.Smooth = smooth;
+    entry.Textured = textured;
+  }
+  tm.texture = textured ? texture : -1;
+
+  // Material and lights: read at every update (a few numbers).
+  tm.color = catar::Vec3(solid[0], solid[1], solid[2]);
+  tm.opacity = in.opacity;
+  if (shaded)
+  {
+    vtkProperty* prop = lighting->GetProperty();
+    tm.shading = smooth ? catar::TraceMesh::Shading::Smooth : catar::TraceMesh::Shading::Flat;
+    tm.material = vtkCatadioptricLightingSupport::ConvertProperty(prop, lighting->GetEmission());
+    tm.ambientFactor = prop->GetAmbient();
+    tm.diffuseFactor = prop->GetDiffuse();
+    tm.opacity *= prop->GetOpacity();
+    tm.twoSided = lighting->GetTwoSidedLighting();
     if (!scene.haveLights)
     {
       scene.lights = vtkCatadioptricLightingSupport::ConvertLights(lighting->GetLights());
@@ -318,36 +456,12 @@ std::string MakeTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting,
   else
   {
     tm.shading = catar::TraceMesh::Shading::None;
+    tm.material = catar::Material();
+    tm.ambientFactor = tm.diffuseFactor = 1.0;
+    tm.twoSided = true;
     if (lighting)
     {
       tm.opacity *= lighting->GetProperty()->GetOpacity();
-    }
-  }
-  if (in.textureCount > 0)
-  {
-    if (vtkDataArray* tcoords = vtkCatadioptricImageSupport::TextureCoordinates(mesh))
-    {
-      int texture = 0;
-      std::string textureError;
-      if (!vtkCatadioptricImageSupport::TextureIndex(mesh, texture, textureError))
-      {
-        return ": " + textureError;
-      }
-      if (texture >= static_cast<int>(in.textureCount))
-      {
-        return " asks for texture " + std::to_string(texture) + " but " +
-          std::to_string(in.textureCount) + " are connected.";
-      }
-      if (texture >= 0)
-      {
-        tm.texture = texture;
-        tm.tcoords.resize(2 * static_cast<std::size_t>(nPts));
-        for (vtkIdType i = 0; i < nPts; ++i)
-        {
-          tm.tcoords[2 * i] = static_cast<float>(tcoords->GetComponent(i, 0));
-          tm.tcoords[2 * i + 1] = static_cast<float>(tcoords->GetComponent(i, 1));
-        }
-      }
     }
   }
   return std::string();
@@ -424,64 +538,74 @@ int vtkCatadioptricRayTracer::RequestData(
     return 0;
   }
 
-  // Meshes.
-  std::vector<catar::TraceMesh> meshes;
+  // Meshes: made again only where they changed.
+  Internals& in = *this->Internal;
   SceneLighting sceneLighting;
   const MeshSettings settings{ this->Color, this->Opacity, this->ColorArrayName,
     this->OutputVisibleTriangle, textures.size() };
   const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
+  in.Meshes.resize(static_cast<std::size_t>(nMeshes));
+  std::vector<std::shared_ptr<const catar::TraceMesh>> meshes(static_cast<std::size_t>(nMeshes));
   for (int m = 0; m < nMeshes; ++m)
   {
-    meshes.emplace_back();
-    if (vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m))
+    MeshEntry& entry = in.Meshes[static_cast<std::size_t>(m)];
+    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
+    if (!mesh)
     {
-      // SetMeshLighting's, else the lighting recorded by the lighting filter that made the mesh.
-      vtkCatadioptricLighting* lighting = this->GetMeshLighting(m);
-      vtkSmartPointer<vtkCatadioptricLighting> recorded;
-      if (!lighting && this->UseInputLighting &&
-        vtkCatadioptricLighting::HasLightingRecord(mesh->GetFieldData()))
+      if (!entry.Trace || entry.HasMesh)
       {
-        recorded = vtkSmartPointer<vtkCatadioptricLighting>::New();
-        if (!recorded->ReadFromFieldData(mesh->GetFieldData()))
-        {
-          vtkErrorMacro("Mesh " << m
-                                << " has a malformed lighting record (field data LightingSettings, "
-                                   "LightingLights, LightingColorArray): turn UseInputLighting off "
-                                   "or light it again with vtkCatadioptricLighting.");
-          return 0;
-        }
-        lighting = recorded;
+        entry = MeshEntry();
+        entry.Trace = std::make_shared<catar::TraceMesh>();
       }
-      const std::string error =
-        MakeTraceMesh(mesh, lighting, settings, meshes.back(), sceneLighting);
-      if (!error.empty())
+      meshes[static_cast<std::size_t>(m)] = entry.Trace;
+      continue;
+    }
+    // SetMeshLighting's, else the lighting recorded by the lighting filter that made the mesh.
+    vtkCatadioptricLighting* lighting = this->GetMeshLighting(m);
+    vtkSmartPointer<vtkCatadioptricLighting> recorded;
+    if (!lighting && this->UseInputLighting &&
+      vtkCatadioptricLighting::HasLightingRecord(mesh->GetFieldData()))
+    {
+      recorded = vtkSmartPointer<vtkCatadioptricLighting>::New();
+      if (!recorded->ReadFromFieldData(mesh->GetFieldData()))
       {
-        vtkErrorMacro("Mesh " << m << error);
+        vtkErrorMacro("Mesh " << m
+                              << " has a malformed lighting record (field data LightingSettings, "
+                                 "LightingLights, LightingColorArray): turn UseInputLighting off "
+                                 "or light it again with vtkCatadioptricLighting.");
         return 0;
       }
+      lighting = recorded;
     }
+    const std::string error = UpdateTraceMesh(mesh, lighting, settings, entry, sceneLighting);
+    if (!error.empty())
+    {
+      entry = MeshEntry();
+      vtkErrorMacro("Mesh " << m << error);
+      return 0;
+    }
+    meshes[static_cast<std::size_t>(m)] = entry.Trace;
   }
   this->UpdateProgress(0.1);
 
-  Internals& in = *this->Internal;
-  if (!in.Tracer.SetScene(
-        meshes, textures, sceneLighting.lights, sceneLighting.globalAmbient, sceneLighting.shadows))
+  if (!in.Tracer.SetScene(meshes, textures, sceneLighting.lights, sceneLighting.globalAmbient,
+        sceneLighting.shadows, vtkCatadioptricParallel::GetNumberOfThreads()))
   {
+    in.Meshes.clear();
     vtkErrorMacro("Cannot build the scene: " << in.Tracer.GetError());
     return 0;
   }
-  if (in.RaysCamera != camera || in.RaysCameraTime != camera->GetMTime() ||
-    in.RaysSamples != this->Samples || in.Tracer.GetWidth() != width ||
-    in.Tracer.GetHeight() != height)
+  // The rays, back-projected again only for another lens, mirror, image size or sample count.
+  if (!in.Tracer.PrepareRays(projector, this->Samples,
+        [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& body) {
+          vtkCatadioptricParallel::For(
+            0, static_cast<vtkIdType>(n), 1, [&](vtkIdType b, vtkIdType e) {
+              body(static_cast<std::size_t>(b), static_cast<std::size_t>(e));
+            });
+        }))
   {
-    if (!in.Tracer.PrepareRays(projector, this->Samples))
-    {
-      vtkErrorMacro(<< in.Tracer.GetError());
-      return 0;
-    }
-    in.RaysCamera = camera;
-    in.RaysCameraTime = camera->GetMTime();
-    in.RaysSamples = this->Samples;
+    vtkErrorMacro(<< in.Tracer.GetError());
+    return 0;
   }
   this->UpdateProgress(0.3);
 
@@ -510,7 +634,7 @@ int vtkCatadioptricRayTracer::RequestData(
     pathData = pathLength->GetPointer(0) + static_cast<std::ptrdiff_t>(width) * (height - 1);
   }
   const catar::RayTracer& tracer = in.Tracer;
-  constexpr int kBand = 16;
+  constexpr int kBand = 2 * catar::RayTracer::kTile;
   const int bands = (height + kBand - 1) / kBand;
   // Statistics per band, summed after the loop (no thread-local storage: the pool's threads are
   // not VTK's).

@@ -33,9 +33,18 @@
  * ColorArrayName (point or cell data) or Color, as the compositor draws it.
  *
  * The camera comes from SetCamera(), CalibrationFileName or else the panel camera (CameraImageSize,
- * FocalLength, ..., WorldToCamera: the demo camera by default). The rays are back-projected once
- * per camera and sample count and kept; rays whose reflection cannot reach the meshes' bounding box
- * are skipped. Work is split into bands of rows with vtkSMPTools.
+ * FocalLength, ..., WorldToCamera: the demo camera by default).
+ *
+ * Kept between updates: the rays, back-projected in the camera frame, while the lens, the mirror,
+ * the image size and Samples stay (a new pose moves them, at render time); the ray scene (Embree's
+ * acceleration structure) and the meshes' triangles while every mesh is the same object with the
+ * same points, cells and OriginalCellId, unmodified (a light, a pose or a material that changes
+ * only re-traces); the colours, normals and texture coordinates read from a mesh while, in
+ * addition, its point and cell data are unmodified. A scene to build again is built by Embree on
+ * the threads of vtkSMPTools' setting. Tiles of 8 x 8 pixels whose rays cannot reach the meshes'
+ * bounding sphere are skipped whole, rays that cannot reach their bounding box are not traced, the
+ * others are traced a tile at a time (Embree's ray streams). Work is split into bands of rows with
+ * vtkSMPTools.
  */
 #ifndef vtkCatadioptricRayTracer_h
 #define vtkCatadioptricRayTracer_h
@@ -138,6 +147,15 @@ public:
   vtkGetMacro(NumberOfTracedRays, vtkIdType);
   vtkGetMacro(NumberOfHits, vtkIdType);
   vtkGetMacro(NumberOfShadowRays, vtkIdType);
+  ///@}
+
+  ///@{
+  /// What this tracer has made since it was created: ray scenes (acceleration structures) built,
+  /// and times the rays were back-projected. A new pose or light adds to neither; a mesh that
+  /// changed (or was added or removed) builds the scene again; another lens, mirror, image size or
+  /// sample count back-projects the rays again.
+  vtkIdType GetNumberOfSceneBuilds();
+  vtkIdType GetNumberOfRayBackProjections();
   ///@}
 
   /// Includes the camera's and the lighting filters' modification times.

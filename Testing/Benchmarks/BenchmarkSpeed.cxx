@@ -8,20 +8,26 @@
 // over --memory-frames frames (default 1000). Run:
 //   CATAR_SHARED_DATA=../shared/data build/bin/BenchmarkSpeed [--frames N] [--memory-frames N]
 //     [--csv FILE] [--object NAME] [--max-seconds S] [--threads N] [--quick] [--no-variants]
-//     [--tilted-hyperboloid]
+//     [--tilted-hyperboloid] [--reference]
 // --object NAME keeps only the objects of that name (box, sphere, bunny, happy-buddha-67k, ...).
 // --max-seconds S (default 30) stops a row after S seconds (at least 5 frames; the table
 // gives the count). --threads N runs vtkSMPTools on N threads (default: all cores).
 // --quick (CI smoke) renders 3 frames of a few small objects. --no-variants stops after the first
 // table (no variants, reference renderer or memory). --tilted-hyperboloid puts a hyperbolic mirror
 // tilted 4 degrees in place of the sphere (Testing/Cxx/TestCameras.h; the general quadric solver).
+// --reference measures only the exact reference renderer (one ray per pixel, Gouraud, one
+// spotlight) on the bunny (or the sphere of the same size), frame by frame interleaved with the
+// fast path's frame in the same process: with only the light moving, with only the camera's pose
+// moving a little, and with the mesh's points marked modified every frame (the ray scene rebuilt).
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
 
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricRayTracer.h"
 #include "vtkCatadioptricRemesher.h"
+#include "vtkMatrix4x4.h"
 #include "vtkPLYReader.h"
+#include "vtkPoints.h"
 #include "vtkSMPTools.h"
 
 #include <cstdlib>
@@ -108,6 +114,113 @@ bool WriteCsv(const std::string& file, const std::vector<Result>& results)
   return true;
 }
 
+// The exact reference renderer against the fast path, frame by frame in turn (the machine's speed
+// drifts): the fast path's full frame (moving spotlight); the reference with only the spotlight
+// moving; with only the camera's pose moving (a fraction of a millimetre and of a degree); with
+// the mesh's points marked modified (the ray scene rebuilt every frame). Median times.
+int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptricCamera* camera,
+  vtkImageData* frame, int frames, double maxSeconds, const std::string& csv)
+{
+  FrameOptions options;
+  options.solver = vtkCatadioptricProjection::ITERATIVE;
+  FramePipeline pipeline(target, camera, frame, options);
+
+  // Light moving: lit by the pipeline's own (moving) spotlight.
+  vtkNew<vtkCatadioptricRayTracer> lightTracer;
+  lightTracer->SetCamera(camera);
+  lightTracer->SetFrameData(frame);
+  lightTracer->AddMeshData(target);
+  lightTracer->SetMeshLighting(0, pipeline.GetLighting());
+
+  // Pose moving: a camera of its own and a still spotlight.
+  vtkNew<vtkCatadioptricCamera> movingCamera;
+  movingCamera->SetModel(camera->GetModel());
+  double start[16];
+  movingCamera->GetWorldToCameraElements(start);
+  vtkNew<vtkCatadioptricLighting> stillLight;
+  stillLight->SetShadingMode(vtkCatadioptricLighting::GOURAUD);
+  stillLight->SetSpecular(0.3);
+  stillLight->SetDiffuseColor(0.9, 0.85, 0.75);
+  stillLight->AddSpotLight(0, 0, 1.3, 0.0, -0.25, 0.9, 40, 1, 0.9, 0.8);
+  vtkNew<vtkCatadioptricRayTracer> poseTracer;
+  poseTracer->SetCamera(movingCamera);
+  poseTracer->SetFrameData(frame);
+  poseTracer->AddMeshData(target);
+  poseTracer->SetMeshLighting(0, stillLight);
+
+  // Mesh modified: a copy of the mesh whose points are marked modified every frame.
+  vtkNew<vtkPolyData> copy;
+  copy->DeepCopy(target);
+  vtkNew<vtkCatadioptricRayTracer> meshTracer;
+  meshTracer->SetCamera(camera);
+  meshTracer->SetFrameData(frame);
+  meshTracer->AddMeshData(copy);
+  meshTracer->SetMeshLighting(0, stillLight);
+
+  // A small camera motion for frame f: world-to-camera = (rotation about the camera's y axis by up
+  // to 0.3 degrees, translation by up to 0.5 mm) * the start.
+  auto movePose = [&](int f) {
+    const double a = 0.3 * std::sin(0.37 * f) * 3.14159265358979 / 180.0;
+    const double d = 0.0005 * std::cos(0.23 * f);
+    const double delta[16] = { std::cos(a), 0, std::sin(a), d, 0, 1, 0, 0.5 * d, -std::sin(a), 0,
+      std::cos(a), 0, 0, 0, 0, 1 };
+    double m[16];
+    vtkMatrix4x4::Multiply4x4(delta, start, m);
+    movingCamera->SetWorldToCameraElements(m);
+  };
+
+  const char* labels[4] = { "fast path (1 spot, gouraud, painter, iterative)",
+    "reference, light moving", "reference, camera pose moving", "reference, mesh modified" };
+  std::vector<double> times[4];
+  const auto begin = Clock::now();
+  for (int f = 0; f <= frames; ++f) // frame 0: warm-up (rays and ray scene made)
+  {
+    double ms[4];
+    ms[0] = pipeline.Frame(f).Total();
+    auto t0 = Clock::now();
+    lightTracer->Update();
+    ms[1] = Ms(t0, Clock::now());
+    movePose(f);
+    t0 = Clock::now();
+    poseTracer->Update();
+    ms[2] = Ms(t0, Clock::now());
+    copy->GetPoints()->Modified();
+    t0 = Clock::now();
+    meshTracer->Update();
+    ms[3] = Ms(t0, Clock::now());
+    if (f > 0)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        times[k].push_back(ms[k]);
+      }
+    }
+    if (f >= 5 && Ms(begin, Clock::now()) > 1e3 * maxSeconds)
+    {
+      break;
+    }
+  }
+  std::printf("Exact reference renderer (1 ray per pixel, gouraud, 1 spotlight) against the fast "
+              "path on the %s, 1328x1048, frames in turn, median (ms):\n\n",
+    name.c_str());
+  std::printf("| object | renderer | triangles | frames | frame | fps | x fast path |\n"
+              "|---|---|---|---|---|---|---|\n");
+  std::vector<Result> results;
+  const double fast = Median(times[0]);
+  for (int k = 0; k < 4; ++k)
+  {
+    Result r{ name, labels[k], target->GetNumberOfPolys(), {}, Median(times[k]) };
+    r.stages.ms = { 0, 0, 0, r.frameMs };
+    r.frames = static_cast<int>(times[k].size());
+    std::printf("| %s | %s | %lld | %d | %.2f | %.1f | %.2f |\n", r.object.c_str(),
+      r.variant.c_str(), static_cast<long long>(r.triangles), r.frames, r.frameMs,
+      r.frameMs > 0 ? 1e3 / r.frameMs : 0.0, fast > 0 ? r.frameMs / fast : 0.0);
+    results.push_back(r);
+  }
+  std::fflush(stdout);
+  return WriteCsv(csv, results) ? 0 : 1;
+}
+
 void PrintRow(const Result& r)
 {
   std::printf("| %s | %s | %lld | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f |\n",
@@ -129,6 +242,7 @@ int main(int argc, char* argv[])
   std::string csv;
   std::string only;         // --object NAME: only the objects of that name
   bool hyperboloid = false; // --tilted-hyperboloid: the demo rig's mirror replaced
+  bool reference = false;   // --reference: the reference renderer's table only
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
@@ -167,11 +281,16 @@ int main(int argc, char* argv[])
     {
       hyperboloid = true;
     }
+    else if (!std::strcmp(argv[i], "--reference"))
+    {
+      reference = true;
+    }
     else
     {
       std::fprintf(stderr,
         "usage: BenchmarkSpeed [--frames N] [--memory-frames N] [--csv FILE] [--object NAME] "
-        "[--threads N] [--max-seconds S] [--quick] [--no-variants] [--tilted-hyperboloid]\n");
+        "[--threads N] [--max-seconds S] [--quick] [--no-variants] [--tilted-hyperboloid] "
+        "[--reference]\n");
       return 2;
     }
   }
@@ -187,6 +306,13 @@ int main(int argc, char* argv[])
     camera->SetModel(catar_test::TiltedHyperboloidCameraModel());
   }
   vtkSmartPointer<vtkImageData> frame = CameraFrame(camera);
+  if (reference)
+  {
+    std::string name;
+    vtkSmartPointer<vtkPolyData> target = BunnyOrSphere(name);
+    return ReferenceTable(
+      target, name, camera, frame, quick ? 3 : std::min(frames, 100), maxSeconds, csv);
+  }
 
   // The objects, made only when they are measured (remeshing the largest box takes seconds).
   std::vector<std::pair<std::string, std::function<vtkSmartPointer<vtkPolyData>()>>> objects;

@@ -1,9 +1,18 @@
-// RayScene (Embree): occlusion and nearest hits on small scenes with known answers.
+// RayScene (Embree): occlusion and nearest hits on small scenes with known answers; several meshes
+// and ray streams against single rays. RayTracer: the tiles it skips, and a new pose taken without
+// back-projecting the rays again, change no pixel.
 #include "RayScene.h"
+#include "RayTracer.h"
+#include "TestCameras.h"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
 
 using namespace catar;
 
@@ -61,4 +70,165 @@ TEST(RayScene, BadInputIsRefused)
   // An empty scene blocks nothing.
   ASSERT_TRUE(scene.Build({}, {}));
   EXPECT_FALSE(scene.Occluded(Vec3(0, 0, 0), Vec3(1, 1, 1)));
+}
+
+TEST(RayScene, SeveralMeshesAndStreams)
+{
+  // Mesh 0: the square at z = 1; mesh 1: empty; mesh 2: a square at z = 2, shifted by 0.5 in x.
+  std::vector<float> a, c;
+  std::vector<std::uint32_t> ta, tc;
+  AddSquare(a, ta, 1.0f);
+  AddSquare(c, tc, 2.0f);
+  for (std::size_t i = 0; i < c.size(); i += 3)
+  {
+    c[i] += 0.5f;
+  }
+  std::vector<RayScene::MeshView> meshes(3);
+  meshes[0] = { a.data(), a.size() / 3, ta.data(), ta.size() / 3 };
+  meshes[2] = { c.data(), c.size() / 3, tc.data(), tc.size() / 3 };
+  for (int threads : { 1, 0 })
+  {
+    RayScene scene;
+    scene.SetBuildThreads(threads);
+    ASSERT_TRUE(scene.Build(meshes)) << scene.GetError();
+    EXPECT_EQ(scene.GetNumberOfTriangles(), 4u);
+    const RayScene::Hit low = scene.Intersect(Vec3(0.25, 0.5, 0.0), Vec3(0, 0, 1), 0.0, 10.0);
+    ASSERT_TRUE(low.hit);
+    EXPECT_EQ(low.mesh, 0u);
+    EXPECT_NEAR(low.t, 1.0, 1e-6);
+    const RayScene::Hit high = scene.Intersect(Vec3(1.25, 0.5, 0.0), Vec3(0, 0, 1), 0.0, 10.0);
+    ASSERT_TRUE(high.hit);
+    EXPECT_EQ(high.mesh, 2u);
+    EXPECT_NEAR(high.t, 2.0, 1e-6);
+
+    // Streams: the answers of single rays, for rays that hit, miss and graze.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> u(-0.5f, 2.0f);
+    std::vector<RayScene::Ray> rays(300);
+    for (RayScene::Ray& r : rays)
+    {
+      const Vec3 d = Vec3(u(random) * 0.2, u(random) * 0.2, 1.0).normalized();
+      r = { { u(random), u(random), 0.0f },
+        { static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z()) } };
+    }
+    std::vector<RayScene::Hit> hits(rays.size());
+    scene.Intersect(rays.size(), rays.data(), hits.data());
+    int hit = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i)
+    {
+      const RayScene::Ray& r = rays[i];
+      const RayScene::Hit one = scene.Intersect(Vec3(r.origin[0], r.origin[1], r.origin[2]),
+        Vec3(r.direction[0], r.direction[1], r.direction[2]), 0.0, HUGE_VAL);
+      ASSERT_EQ(hits[i].hit, one.hit) << "ray " << i;
+      hit += one.hit;
+      if (one.hit)
+      {
+        EXPECT_EQ(hits[i].mesh, one.mesh) << "ray " << i;
+        EXPECT_EQ(hits[i].triangle, one.triangle) << "ray " << i;
+        EXPECT_EQ(hits[i].t, one.t) << "ray " << i;
+        EXPECT_EQ(hits[i].u, one.u) << "ray " << i;
+        EXPECT_EQ(hits[i].v, one.v) << "ray " << i;
+      }
+    }
+    EXPECT_GT(hit, 50);
+    EXPECT_LT(hit, 250);
+  }
+}
+
+namespace
+{
+// A box of 12 triangles, one colour per face, where the demo camera sees it.
+std::shared_ptr<TraceMesh> TraceBox(const Vec3& lo, const Vec3& hi)
+{
+  auto box = std::make_shared<TraceMesh>();
+  for (int k = 0; k < 8; ++k)
+  {
+    box->points.emplace_back(
+      k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+  }
+  const std::uint32_t faces[6][4] = { { 0, 4, 6, 2 }, { 1, 3, 7, 5 }, { 0, 1, 5, 4 },
+    { 2, 6, 7, 3 }, { 0, 2, 3, 1 }, { 4, 5, 7, 6 } };
+  for (int f = 0; f < 6; ++f)
+  {
+    box->triangles.push_back({ faces[f][0], faces[f][1], faces[f][2] });
+    box->triangles.push_back({ faces[f][0], faces[f][2], faces[f][3] });
+    for (int t = 0; t < 2; ++t)
+    {
+      box->colors.insert(box->colors.end(), { 0.2f + 0.15f * f, 0.9f - 0.1f * f, 0.5f, 1.0f });
+    }
+  }
+  box->colorSource = TraceMesh::ColorSource::Cell;
+  box->shading = TraceMesh::Shading::None;
+  return box;
+}
+
+// Renders the whole image (in bands of 24 rows: not a multiple of the tile) with `tracer`.
+std::vector<std::uint8_t> Render(
+  const RayTracer& tracer, RayTraceStatistics& statistics, std::vector<RasterId>& ids)
+{
+  const int w = tracer.GetWidth(), h = tracer.GetHeight();
+  std::vector<std::uint8_t> pixels(4 * static_cast<std::size_t>(w) * h, 30);
+  ids.assign(static_cast<std::size_t>(w) * h, -2);
+  ImageView view;
+  view.data = pixels.data();
+  view.width = w;
+  view.height = h;
+  view.rowStride = 4 * static_cast<std::ptrdiff_t>(w);
+  for (int y = 0; y < h; y += 24)
+  {
+    tracer.RenderRows(view, ids.data(), w, y, y + 24, &statistics);
+  }
+  return pixels;
+}
+} // namespace
+
+TEST(RayTracer, SkippedTilesAndNewPosesChangeNoPixel)
+{
+  CameraModel model = catar_test::SmallDemoCameraModel();
+  model.intrinsics.width = 645; // edge tiles of 5 x 3 pixels
+  model.intrinsics.height = 483;
+  model.intrinsics.cx = 322.0;
+  model.intrinsics.cy = 241.0;
+  const std::vector<std::shared_ptr<const TraceMesh>> meshes = { TraceBox(
+    Vec3(-0.01, -0.37, 0.82), Vec3(0.29, -0.25, 0.91)) };
+  RayTracer tracer;
+  ASSERT_TRUE(tracer.SetScene(meshes, {}, {}, Vec3::Zero(), false)) << tracer.GetError();
+  ASSERT_TRUE(tracer.SetScene(meshes, {}, {}, Vec3::Zero(), false)) << tracer.GetError();
+  EXPECT_EQ(tracer.GetNumberOfBuilds(), 1u); // the same mesh object: kept
+  for (int pose = 0; pose < 3; ++pose)
+  {
+    if (pose > 0)
+    {
+      // The camera turned about its x and z axes and moved by a few millimetres.
+      const Eigen::Matrix3d turn =
+        (Eigen::AngleAxisd(0.01 * pose, Vec3::UnitX()) * Eigen::AngleAxisd(-0.02, Vec3::UnitZ()))
+          .toRotationMatrix();
+      Mat4 delta = Mat4::Identity();
+      delta.topLeftCorner<3, 3>() = turn;
+      delta.topRightCorner<3, 1>() = Vec3(0.003, -0.002, 0.001 * pose);
+      model.worldToCamera = delta * model.worldToCamera;
+    }
+    const Projector projector(model);
+    ASSERT_TRUE(tracer.PrepareRays(projector, 1)) << tracer.GetError();
+    EXPECT_EQ(tracer.GetNumberOfRayPreparations(), 1u) << "pose " << pose;
+    RayTracer fresh;
+    ASSERT_TRUE(fresh.SetScene(meshes, {}, {}, Vec3::Zero(), false));
+    ASSERT_TRUE(fresh.PrepareRays(projector, 1));
+    fresh.SetTileCulling(false);
+
+    RayTraceStatistics culled, all;
+    std::vector<RasterId> culledIds, allIds;
+    const std::vector<std::uint8_t> a = Render(tracer, culled, culledIds);
+    const std::vector<std::uint8_t> b = Render(fresh, all, allIds);
+    EXPECT_GT(culled.hits, 1000u) << "pose " << pose;
+    EXPECT_EQ(culled.mirrorRays, all.mirrorRays) << "pose " << pose;
+    EXPECT_EQ(culled.tracedRays, all.tracedRays) << "pose " << pose;
+    EXPECT_EQ(culled.hits, all.hits) << "pose " << pose;
+    EXPECT_TRUE(a == b) << "pose " << pose;
+    EXPECT_TRUE(culledIds == allIds) << "pose " << pose;
+    EXPECT_EQ(std::count(culledIds.begin(), culledIds.end(), RasterId(-2)), 0);
+  }
+  // Another sample count: the rays are back-projected again.
+  ASSERT_TRUE(tracer.PrepareRays(Projector(model), 2));
+  EXPECT_EQ(tracer.GetNumberOfRayPreparations(), 2u);
 }

@@ -18,11 +18,14 @@
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
+#include "vtkSphereSource.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -37,6 +40,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -489,4 +493,214 @@ TEST(vtkCatadioptricRayTracer, LightingRecordLightsAsSetMeshLightingDoes)
   tracer->UseInputLightingOff();
   tracer->Update();
   EXPECT_EQ(errors->Count, 1) << errors->Last;
+}
+
+namespace
+{
+// A lit sphere of 64 x 32 facets (with point normals) in view of the demo camera.
+vtkSmartPointer<vtkPolyData> Ball(double x, double y, double z, double radius)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(x, y, z);
+  sphere->SetRadius(radius);
+  sphere->SetThetaResolution(64);
+  sphere->SetPhiResolution(32);
+  sphere->Update();
+  return sphere->GetOutput();
+}
+
+vtkSmartPointer<vtkCatadioptricLighting> Spotlight()
+{
+  auto lighting = vtkSmartPointer<vtkCatadioptricLighting>::New();
+  lighting->AddSpotLight(0.25, 0.05, 1.35, 0.06, -0.32, 0.92, 45, 1.0, 0.95, 0.85);
+  lighting->SetDiffuseColor(0.2, 0.6, 1.0);
+  lighting->SetSpecular(0.4);
+  lighting->SetShadingModeToGouraud();
+  return lighting;
+}
+
+// Renders `meshes` lit by `lighting` through `camera` with a tracer of its own (nothing kept).
+vtkSmartPointer<vtkImageData> FreshRender(vtkCatadioptricCamera* camera,
+  const std::vector<vtkPolyData*>& meshes, vtkCatadioptricLighting* lighting)
+{
+  vtkNew<vtkCatadioptricCamera> copy;
+  copy->SetModel(camera->GetModel());
+  vtkNew<vtkCatadioptricRayTracer> tracer;
+  tracer->SetCamera(copy);
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    tracer->AddMeshData(meshes[m]);
+    tracer->SetMeshLighting(static_cast<int>(m), lighting);
+  }
+  tracer->OutputVisibleTriangleOn();
+  tracer->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(tracer->GetOutput());
+  return image;
+}
+
+// Pixels (RGBA) and visible triangles that differ between two images of the same size.
+long Differences(vtkImageData* a, vtkImageData* b)
+{
+  int da[3], db[3];
+  a->GetDimensions(da);
+  b->GetDimensions(db);
+  if (da[0] != db[0] || da[1] != db[1])
+  {
+    return -1;
+  }
+  auto* ca = static_cast<const unsigned char*>(a->GetScalarPointer());
+  auto* cb = static_cast<const unsigned char*>(b->GetScalarPointer());
+  auto* ia = vtkTypeInt64Array::SafeDownCast(a->GetPointData()->GetArray("VisibleTriangle"));
+  auto* ib = vtkTypeInt64Array::SafeDownCast(b->GetPointData()->GetArray("VisibleTriangle"));
+  long n = 0;
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(da[0]) * da[1]; ++i)
+  {
+    n += !std::equal(ca + 4 * i, ca + 4 * i + 4, cb + 4 * i) ||
+      (ia && ib && ia->GetValue(i) != ib->GetValue(i));
+  }
+  return n;
+}
+} // namespace
+
+// A new pose or a moved light re-traces the kept scene and rays: the same picture as a tracer
+// that starts afresh, with no scene built and no ray back-projected again.
+TEST(vtkCatadioptricRayTracer, KeptSceneAndRaysGiveAFreshTracersPicture)
+{
+  auto camera = DemoCamera();
+  auto ball = Ball(0.06, -0.32, 0.92, 0.05);
+  auto lighting = Spotlight();
+  vtkNew<vtkCatadioptricRayTracer> tracer;
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(tracer);
+  tracer->SetCamera(camera);
+  tracer->AddMeshData(ball);
+  tracer->SetMeshLighting(0, lighting);
+  tracer->OutputVisibleTriangleOn();
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_GT(tracer->GetNumberOfHits(), 1000);
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1);
+  EXPECT_EQ(tracer->GetNumberOfRayBackProjections(), 1);
+  vtkNew<vtkImageData> first;
+  first->DeepCopy(tracer->GetOutput());
+  EXPECT_EQ(Differences(first, FreshRender(camera, { ball }, lighting)), 0);
+
+  // The camera turned by 0.3 degrees and moved by 2 mm.
+  double pose[16];
+  camera->GetWorldToCameraElements(pose);
+  const double a = 0.3 * 3.14159265358979 / 180.0;
+  const double turn[16] = { std::cos(a), 0, std::sin(a), 0.002, 0, 1, 0, 0.001, -std::sin(a), 0,
+    std::cos(a), 0, 0, 0, 0, 1 };
+  double moved[16];
+  vtkMatrix4x4::Multiply4x4(turn, pose, moved);
+  camera->SetWorldToCameraElements(moved);
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1);
+  EXPECT_EQ(tracer->GetNumberOfRayBackProjections(), 1);
+  EXPECT_GT(Differences(tracer->GetOutput(), first), 100); // the ball moved in the picture
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
+
+  // The spotlight moved.
+  vtkNew<vtkImageData> beforeLight;
+  beforeLight->DeepCopy(tracer->GetOutput());
+  auto* light = vtkLight::SafeDownCast(lighting->GetLights()->GetItemAsObject(0));
+  ASSERT_NE(light, nullptr);
+  light->SetPosition(0.1, 0.0, 1.4);
+  lighting->Modified();
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1);
+  EXPECT_EQ(tracer->GetNumberOfRayBackProjections(), 1);
+  EXPECT_GT(Differences(tracer->GetOutput(), beforeLight), 100);
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
+
+  // Another colour and flat shading: the shading arrays are read again, the scene is kept.
+  lighting->SetDiffuseColor(1.0, 0.3, 0.2);
+  lighting->SetShadingModeToFlat();
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1);
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
+
+  // Another sample count back-projects the rays again (and a pose change after it does not).
+  tracer->SetSamples(2);
+  tracer->Update();
+  EXPECT_EQ(tracer->GetNumberOfRayBackProjections(), 2);
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1);
+}
+
+// A mesh whose points are changed in place, marked modified by its points or by itself, and a
+// mesh added or taken away: the scene is built again and the picture is a fresh tracer's.
+TEST(vtkCatadioptricRayTracer, ChangedMeshesBuildTheSceneAgain)
+{
+  auto camera = DemoCamera();
+  auto ball = Ball(0.06, -0.32, 0.92, 0.05);
+  auto lighting = Spotlight();
+  vtkNew<vtkCatadioptricRayTracer> tracer;
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(tracer);
+  tracer->SetCamera(camera);
+  tracer->AddMeshData(ball);
+  tracer->SetMeshLighting(0, lighting);
+  tracer->OutputVisibleTriangleOn();
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  vtkNew<vtkImageData> first;
+  first->DeepCopy(tracer->GetOutput());
+  const vtkIdType hits = tracer->GetNumberOfHits();
+
+  // Points moved in place by 2 cm along x, then the points marked modified.
+  vtkPoints* points = ball->GetPoints();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    p[0] += 0.02;
+    points->SetPoint(i, p);
+  }
+  points->Modified();
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 2);
+  EXPECT_EQ(tracer->GetNumberOfRayBackProjections(), 1);
+  EXPECT_GT(Differences(tracer->GetOutput(), first), 100);
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
+
+  // Points written through the raw array, only the mesh marked modified.
+  vtkDataArray* data = points->GetData();
+  for (vtkIdType i = 0; i < data->GetNumberOfTuples(); ++i)
+  {
+    data->SetComponent(i, 2, data->GetComponent(i, 2) + 0.01);
+  }
+  vtkNew<vtkImageData> second;
+  second->DeepCopy(tracer->GetOutput());
+  ball->Modified();
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 3);
+  EXPECT_GT(Differences(tracer->GetOutput(), second), 100);
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
+
+  // A second mesh added.
+  auto other = Ball(-0.05, -0.30, 0.95, 0.03);
+  tracer->AddMeshData(other);
+  tracer->SetMeshLighting(1, lighting);
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 4);
+  EXPECT_GT(tracer->GetNumberOfHits(), hits);
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball, other }, lighting)), 0);
+  tracer->Update(); // nothing changed: nothing runs
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 4);
+
+  // The first taken away: the second alone, now mesh 0.
+  tracer->RemoveAllMeshConnections();
+  tracer->AddMeshData(other);
+  tracer->SetMeshLighting(0, lighting);
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 5);
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { other }, lighting)), 0);
 }
