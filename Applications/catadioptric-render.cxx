@@ -351,7 +351,7 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
       std::fprintf(stderr, "\ncatadioptric-render: frame %lld: %s\n", k, renderer->GetLastError());
       return 1;
     }
-    for (int s = perFrame - 1; s < stages; ++s) // the background (decoding) and the frame's
+    for (int s = perFrame; s < stages; ++s) // the background (decoding) and the frame's
     {
       sum[s] += renderer->GetStageTime(s);
       worst[s] = std::max(worst[s], renderer->GetStageTime(s));
@@ -375,7 +375,7 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
   if (Json)
   {
     std::string stagesJson;
-    for (int s = perFrame - 1; s < stages; ++s)
+    for (int s = perFrame; s < stages; ++s)
     {
       stagesJson += std::string(stagesJson.empty() ? "" : ", ") +
         Quoted(renderer->GetStageName(s)) + ": {\"mean\": " + JsonNumber(1e3 * sum[s] / n) +
@@ -403,7 +403,7 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
               "encoding\n",
     n, first, end - 1, total, n / total);
   std::printf("  %-11s %9s %9s\n", "stage", "mean ms", "max ms");
-  for (int s = perFrame - 1; s < stages; ++s)
+  for (int s = perFrame; s < stages; ++s)
   {
     std::printf(
       "  %-11s %9.2f %9.2f\n", renderer->GetStageName(s), 1e3 * sum[s] / n, 1e3 * worst[s]);
@@ -482,7 +482,9 @@ int main(int argc, char* argv[])
     ->check(CLI::Range(2, 4));
   app
     .add_option("--repeat", repeat,
-      "render the frame N times and report the per-frame stages of the last one")
+      "render the frame N times, the camera marked modified before each so that every per-frame "
+      "stage runs again, and report the median of each stage and of the whole frame over frames "
+      "2 to N")
     ->type_name("N")
     ->check(CLI::PositiveNumber);
   auto* area = app
@@ -646,19 +648,45 @@ int main(int argc, char* argv[])
       "out/frame_%%05d.png or out.mp4 for all)\n",
       frames, first);
   }
+  // --repeat N: N frames, the camera marked modified before each after the first, so that every
+  // per-frame stage runs again as when the camera moves (what depends only on inputs that did not
+  // change -- the synthesised background, the colours averaged at the vertices -- is kept, as it
+  // would be). Every frame's stages are kept: with N > 1 the summary gives their medians over
+  // frames 2 to N (the first frame also makes what the others reuse) and the first frame apart.
+  const int stages = renderer->GetNumberOfStages();
+  const int perFrame = renderer->GetFirstPerFrameStage();
+  std::vector<std::vector<double>> stageTimes(stages);
+  std::vector<double> poseTimes, frameTimes;
   for (int f = 0; f < repeat; ++f)
   {
+    if (f > 0)
+    {
+      renderer->GetCamera()->Modified();
+    }
     if (!renderer->RenderFrame(static_cast<int>(first)))
     {
       std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
       return 1;
     }
-    if (f + 1 < repeat)
+    for (int s = perFrame; s < stages; ++s)
     {
-      // Touch the camera so that the next frame redoes the per-frame stages.
-      renderer->GetCamera()->Modified();
+      stageTimes[s].push_back(renderer->GetStageTime(s));
     }
+    poseTimes.push_back(renderer->GetFramePoseTime());
+    frameTimes.push_back(renderer->GetFrameTime());
   }
+  // A stage's time: the load's own, or the median of the frames timed (all but the first).
+  const std::size_t timedFrom = repeat > 1 ? 1 : 0;
+  const auto median = [timedFrom](const std::vector<double>& all) {
+    std::vector<double> v(all.begin() + static_cast<std::ptrdiff_t>(timedFrom), all.end());
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const auto stageTime = [&](int s) {
+    return s < perFrame ? renderer->GetStageTime(s) : median(stageTimes[s]);
+  };
+  const bool markerPose = *renderer->GetPoseReport() != '\0';
+  const double frameTime = median(frameTimes);
   if (renderer->GetNumberOfTriangles() == 0)
   {
     std::fprintf(stderr,
@@ -679,22 +707,27 @@ int main(int argc, char* argv[])
   if (Json)
   {
     std::string stagesJson;
-    for (int s = 0; s < renderer->GetNumberOfStages(); ++s)
+    for (int s = 0; s < stages; ++s)
     {
       stagesJson += std::string(s ? ", " : "") + Quoted(renderer->GetStageName(s)) + ": " +
-        JsonNumber(1e3 * renderer->GetStageTime(s));
+        JsonNumber(1e3 * stageTime(s));
+    }
+    if (markerPose)
+    {
+      stagesJson += ", \"pose\": " + JsonNumber(1e3 * median(poseTimes));
     }
     std::printf("{\"scene\": %s, \"output\": %s, \"mask\": %s, \"ids\": %s, \"depth\": %s, "
                 "\"width\": %d, "
                 "\"height\": %d, \"triangles\": %lld, \"backend\": %s, \"threads\": %d, "
-                "\"stages_ms\": {%s}, \"frame_ms\": %s}\n",
+                "\"repeat\": %d, \"stages_ms\": {%s}, \"frame_ms\": %s, \"first_frame_ms\": %s}\n",
       scene.empty() ? "null" : Quoted(scene).c_str(), Quoted(outName).c_str(),
       maskName.empty() ? "null" : Quoted(maskName).c_str(),
       idsName.empty() ? "null" : Quoted(idsName).c_str(),
       depthName.empty() ? "null" : Quoted(depthName).c_str(), cam->GetImageWidth(),
       cam->GetImageHeight(), static_cast<long long>(renderer->GetNumberOfTriangles()),
-      Quoted(vtkSMPTools::GetBackend()).c_str(), vtkSMPTools::GetEstimatedNumberOfThreads(),
-      stagesJson.c_str(), JsonNumber(1e3 * renderer->GetFrameTime()).c_str());
+      Quoted(vtkSMPTools::GetBackend()).c_str(), vtkSMPTools::GetEstimatedNumberOfThreads(), repeat,
+      stagesJson.c_str(), JsonNumber(1e3 * frameTime).c_str(),
+      JsonNumber(1e3 * frameTimes.front()).c_str());
     return 0;
   }
   if (Quiet)
@@ -714,12 +747,33 @@ int main(int argc, char* argv[])
   {
     std::printf("remeshed:\n%s", renderer->GetMeshReport());
   }
-  for (int s = 0; s < renderer->GetNumberOfStages(); ++s)
+  for (int s = 0; s < stages; ++s)
   {
-    std::printf("  %-11s %9.2f ms\n", renderer->GetStageName(s), 1e3 * renderer->GetStageTime(s));
+    if (s == perFrame && repeat > 1)
+    {
+      std::printf("per frame, median of frames 2 to %d:\n", repeat);
+    }
+    std::printf("  %-11s %9.2f ms\n", renderer->GetStageName(s), 1e3 * stageTime(s));
   }
-  std::printf("  per frame   %9.2f ms (projection + lighting + sort + composite)\n",
-    1e3 * renderer->GetFrameTime());
+  if (markerPose)
+  {
+    std::printf("  %-11s %9.2f ms\n", "pose", 1e3 * median(poseTimes));
+  }
+  std::string sum;
+  for (int s = perFrame; s < stages; ++s)
+  {
+    sum += std::string(sum.empty() ? "" : " + ") + renderer->GetStageName(s);
+  }
+  sum += markerPose ? " + pose" : "";
+  if (repeat > 1)
+  {
+    std::printf("  per frame   %9.2f ms (%s; the first frame %.2f ms)\n", 1e3 * frameTime,
+      sum.c_str(), 1e3 * frameTimes.front());
+  }
+  else
+  {
+    std::printf("  per frame   %9.2f ms (%s)\n", 1e3 * frameTime, sum.c_str());
+  }
   std::printf("wrote %s\n", outName.c_str());
   return 0;
 }

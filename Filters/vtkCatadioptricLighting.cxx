@@ -280,6 +280,44 @@ struct vtkCatadioptricLighting::Internals
     return std::get<2>(this->Degenerate);
   }
 
+  // Cell base colours averaged at the points (Gouraud), and what they were averaged from: the
+  // colour array and the polygons (held, so that the same pointer is the same object), their
+  // MTimes, the point count and the first polygon's cell id. Averaged once, not every frame:
+  // the projection passes the input's polygons and cell data on unchanged.
+  std::vector<float> PointBase;
+  vtkSmartPointer<vtkDataArray> PointBaseColors;
+  vtkSmartPointer<vtkCellArray> PointBasePolys;
+  std::tuple<vtkMTimeType, vtkMTimeType, vtkIdType, vtkIdType> PointBaseKey{ 0, 0, -1, -1 };
+
+  const std::vector<float>& GetPointBase(vtkPolyData* mesh, const vtkCatadioptricColorArray& base)
+  {
+    vtkCellArray* polys = mesh->GetPolys();
+    vtkDataArray* colors = base.GetArray();
+    const vtkIdType nPts = mesh->GetNumberOfPoints();
+    const vtkIdType first = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+    const auto key = std::make_tuple(colors->GetMTime(), polys->GetMTime(), nPts, first);
+    if (colors == this->PointBaseColors && polys == this->PointBasePolys &&
+      key == this->PointBaseKey)
+    {
+      return this->PointBase;
+    }
+    vtkNew<vtkIdList> ids;
+    this->PointBase = catar::AverageAtPoints<float>(
+      static_cast<std::size_t>(nPts), static_cast<std::size_t>(polys->GetNumberOfCells()), 4,
+      [&](std::size_t c, auto&& visit) {
+        polys->GetCellAtId(static_cast<vtkIdType>(c), ids);
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+        {
+          visit(static_cast<std::size_t>(ids->GetId(k)));
+        }
+      },
+      [&](std::size_t c, float* v) { base.Get(0, first + static_cast<vtkIdType>(c), v); });
+    this->PointBaseColors = colors;
+    this->PointBasePolys = polys;
+    this->PointBaseKey = key;
+    return this->PointBase;
+  }
+
   const std::vector<catar::Vec3>& GetNormals(vtkPolyData* mesh)
   {
     vtkPoints* pts = mesh->GetPoints();
@@ -850,24 +888,12 @@ int vtkCatadioptricLighting::RequestData(
     const std::vector<catar::Vec3>& normals = (inNormals && inNormals->GetNumberOfComponents() == 3)
       ? none
       : this->Internal->GetNormals(input);
-    // Cell base colours become point colours: the mean over the cells around each point.
-    std::vector<float> pointBase;
-    if (base.HasArray() && !base.IsPerPoint())
-    {
-      vtkCellArray* polys = input->GetPolys();
-      const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
-      vtkNew<vtkIdList> ids;
-      pointBase = catar::AverageAtPoints<float>(
-        static_cast<std::size_t>(nPts), static_cast<std::size_t>(polys->GetNumberOfCells()), 4,
-        [&](std::size_t c, auto&& visit) {
-          polys->GetCellAtId(static_cast<vtkIdType>(c), ids);
-          for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-          {
-            visit(static_cast<std::size_t>(ids->GetId(k)));
-          }
-        },
-        [&](std::size_t c, float* v) { base.Get(0, first + static_cast<vtkIdType>(c), v); });
-    }
+    // Cell base colours become point colours: the mean over the cells around each point, kept
+    // while the colours and the polygons are unchanged.
+    static const std::vector<float> noPointBase;
+    const std::vector<float>& pointBase = base.HasArray() && !base.IsPerPoint()
+      ? this->Internal->GetPointBase(input, base)
+      : noPointBase;
     colors->SetNumberOfTuples(nPts);
     unsigned char* out = colors->GetPointer(0);
     // The projection's arrays (uint8 Visible, double MirrorPoint) are read directly.

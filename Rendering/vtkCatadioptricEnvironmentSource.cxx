@@ -16,12 +16,14 @@
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -58,12 +60,46 @@ struct vtkCatadioptricEnvironmentSource::PanoramaCache
   std::string FileName; // "" for the generated one
   std::filesystem::file_time_type FileTime{};
   std::array<double, 10> RoomKey{}; // room corners, tile, viewpoint (generated panorama)
+  unsigned long Generation = 0;     // counts the panoramas made: a frame names the one it used
+};
+
+// The last frame made and what it was made from: the output's pixel array (not held, so that the
+// pipeline can reuse it in place; a weak pointer says whether it is still there), its MTime after
+// writing, the camera and this source's parameters.
+struct vtkCatadioptricEnvironmentSource::FrameCache
+{
+  vtkWeakPointer<vtkDataArray> Pixels;
+  vtkMTimeType PixelsTime = 0;
+  catar::CameraModel Camera;
+  std::vector<double> Parameters;
+
+  static bool SameCamera(const catar::CameraModel& a, const catar::CameraModel& b)
+  {
+    const catar::Intrinsics& i = a.intrinsics;
+    const catar::Intrinsics& j = b.intrinsics;
+    const catar::Distortion& d = a.distortion;
+    const catar::Distortion& e = b.distortion;
+    return i.fx == j.fx && i.fy == j.fy && i.cx == j.cx && i.cy == j.cy && i.skew == j.skew &&
+      i.width == j.width && i.height == j.height && d.k1 == e.k1 && d.k2 == e.k2 && d.p1 == e.p1 &&
+      d.p2 == e.p2 && d.k3 == e.k3 && a.mirror == b.mirror && a.worldToCamera == b.worldToCamera;
+  }
+
+  // Whether `output` still holds the frame made from `camera` and `parameters`.
+  bool Holds(vtkImageData* output, const catar::CameraModel& camera,
+    const std::vector<double>& parameters) const
+  {
+    vtkDataArray* scalars = output->GetPointData()->GetScalars();
+    return scalars && scalars == this->Pixels.GetPointer() &&
+      scalars->GetMTime() == this->PixelsTime && parameters == this->Parameters &&
+      SameCamera(camera, this->Camera);
+  }
 };
 
 vtkStandardNewMacro(vtkCatadioptricEnvironmentSource);
 
 vtkCatadioptricEnvironmentSource::vtkCatadioptricEnvironmentSource()
   : Cache(new PanoramaCache)
+  , LastFrame(new FrameCache)
 {
   this->SetNumberOfInputPorts(0);
 }
@@ -126,6 +162,23 @@ int vtkCatadioptricEnvironmentSource::RequestData(
   const int width = camera->GetImageWidth();
   const int height = camera->GetImageHeight();
   vtkImageData* output = vtkImageData::GetData(outputVector);
+  // The last frame again when nothing it depends on has changed (its pixels are still the
+  // output's: the pipeline keeps an image's scalars from one update to the next).
+  const std::vector<double> parameters = { static_cast<double>(this->Mode),
+    static_cast<double>(this->Samples), this->RoomMinimum[0], this->RoomMinimum[1],
+    this->RoomMinimum[2], this->RoomMaximum[0], this->RoomMaximum[1], this->RoomMaximum[2],
+    this->FloorTileSize, this->PanoramaRotation, this->BackdropColor[0], this->BackdropColor[1],
+    this->BackdropColor[2],
+    this->Mode == PANORAMA ? static_cast<double>(this->Cache->Generation) : 0.0 };
+  FrameCache& last = *this->LastFrame;
+  if (last.Holds(output, camera->GetModel(), parameters))
+  {
+    output->SetExtent(0, width - 1, 0, height - 1, 0, 0);
+    output->SetOrigin(0, 0, 0);
+    output->SetSpacing(1, 1, 1);
+    return 1;
+  }
+  last.Pixels = nullptr;
   unsigned char* bytes = vtkCatadioptricImageSupport::AllocateRGBA(output, width, height);
 
   const catar::Projector projector(camera->GetModel());
@@ -160,6 +213,12 @@ int vtkCatadioptricEnvironmentSource::RequestData(
         projector, room, samples, view, static_cast<int>(y0), static_cast<int>(y1));
     }
   });
+  vtkDataArray* scalars = output->GetPointData()->GetScalars();
+  scalars->Modified(); // written through its pointer
+  last.Pixels = scalars;
+  last.PixelsTime = scalars->GetMTime();
+  last.Camera = camera->GetModel();
+  last.Parameters = parameters;
   return 1;
 }
 
@@ -199,6 +258,7 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
       cache.FileName.clear();
       cache.RoomKey = key;
       cache.Valid = true;
+      ++cache.Generation;
     }
     return true;
   }
@@ -284,6 +344,7 @@ bool vtkCatadioptricEnvironmentSource::UpdatePanorama(vtkCatadioptricCamera* cam
   cache.FileName = name;
   cache.FileTime = time;
   cache.Valid = true;
+  ++cache.Generation;
   return true;
 }
 

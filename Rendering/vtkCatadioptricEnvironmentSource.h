@@ -15,6 +15,12 @@
  * Output: RGBA unsigned char vtkImageData of the camera's image size, in VTK row order. Rows are
  * computed in parallel with vtkSMPTools.
  *
+ * The frame depends on the camera (image size, intrinsics, distortion, mirror and pose) and on
+ * this source's parameters only. An update that finds all of them equal to those of the frame it
+ * made last (the camera marked modified with nothing changed, as when only the objects or the
+ * lights of a scene move) keeps that frame instead of tracing every pixel again; any change, a
+ * new pose included, makes a new one.
+ *
  * The camera comes from SetCamera(), or, when none is set, from CalibrationFileName, or else from
  * the panel camera (CameraImageSize, FocalLength, ..., WorldToCamera: the demo camera by default).
  */
@@ -174,6 +180,8 @@ protected:
 private:
   struct PanoramaCache;
   std::unique_ptr<PanoramaCache> Cache;
+  struct FrameCache;
+  std::unique_ptr<FrameCache> LastFrame;
 
   vtkCatadioptricEnvironmentSource(const vtkCatadioptricEnvironmentSource&) = delete;
   void operator=(const vtkCatadioptricEnvironmentSource&) = delete;

@@ -154,8 +154,8 @@ int main(int argc, char* argv[])
       writer.write(bgr);
     }
   }
-  std::printf("%d frames (%s, %s), %lld triangles: %.2f ms per frame for projection + lighting "
-              "+ sort + composite; frames %s_000.png ...%s%s\n",
+  std::printf("%d frames (%s, %s), %lld triangles: %.2f ms per frame for background + "
+              "projection + lighting + sort + composite; frames %s_000.png ...%s%s\n",
     frames, shading.c_str(), shadows ? "shadows" : "no shadows",
     static_cast<long long>(renderer->GetNumberOfTriangles()), 1e3 * total / frames, prefix.c_str(),
     video.empty() ? "" : ", video ", video.c_str());

@@ -79,7 +79,7 @@ def main():
             total += renderer.GetFrameTime()
             renderer.WritePNG("%s_%03d.png" % (args.prefix, frame))
     print("%d frames of %s, %d triangles, 3 spotlights with shadows: %.1f ms per frame "
-          "(projection + lighting + sort + composite)"
+          "(background + projection + lighting + sort + composite)"
           % (args.frames, os.path.basename(mesh) or "a torus", renderer.GetNumberOfTriangles(),
              1e3 * total / args.frames))
     return 0

@@ -59,8 +59,8 @@ namespace
 const char* const kStageNames[] = { "scene", "meshes", "background", "projection", "lighting",
   "sort", "composite" };
 constexpr int kNumberOfStages = 7;
-// The stages that run for every frame (projection .. composite).
-constexpr int kFirstPerFrameStage = 3;
+// The stages that run for every frame (background .. composite): a frame costs their sum.
+constexpr int kFirstPerFrameStage = 2;
 
 using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b)
@@ -206,6 +206,12 @@ struct vtkCatadioptricSceneRenderer::Internals
   double PoseTime = 0.0;
   std::string PoseReport;
   int PoseFailures = 0;
+  // Work of ApplyFrame that belongs to the next Render()'s frame: decoding the background's
+  // frame (counted in the background stage) and estimating the pose from markers; and the pose
+  // time of the last Render() (0 when it estimated none).
+  double PendingDecodeTime = 0.0;
+  double PendingPoseTime = 0.0;
+  double FramePoseTime = 0.0;
 
   bool ApplyFrame(int k);
   void EstimatePose(const catar::Frame& frame);
@@ -285,6 +291,7 @@ bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
   const long long videoFrame = this->Frames.VideoFrame(k);
   if (videoFrame >= 0)
   {
+    const auto start = Clock::now();
     catar::Frame frame;
     if (!this->Video.Read(videoFrame, frame, this->Error))
     {
@@ -292,14 +299,17 @@ bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
       return false;
     }
     vtkCatadioptricImageSupport::FromFrame(frame, this->VideoImage);
+    this->PendingDecodeTime += Seconds(start, Clock::now());
     if (this->UseMarkers)
     {
       this->EstimatePose(frame);
+      this->PendingPoseTime += this->PoseTime;
     }
   }
   else if (this->UseMarkers && this->CurrentFrame < 0)
   {
     this->EstimatePose(this->StillFrame); // an image background: once
+    this->PendingPoseTime += this->PoseTime;
   }
   this->CurrentFrame = k;
   return true;
@@ -367,6 +377,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   // pixel-tolerance remeshing looks through it).
   in.Scene = scene;
   in.CurrentFrame = -1;
+  in.PendingDecodeTime = in.PendingPoseTime = in.FramePoseTime = 0.0;
   in.MovingObjects.clear();
   long long videoFrames = 0;
   double videoFps = 0.0;
@@ -875,6 +886,10 @@ bool vtkCatadioptricSceneRenderer::Render()
     vtkErrorMacro(<< in.Error);
     return false;
   };
+  // What ApplyFrame did for this frame: the background's decoding and the pose estimation.
+  const double decode = in.PendingDecodeTime;
+  in.FramePoseTime = in.PendingPoseTime;
+  in.PendingDecodeTime = in.PendingPoseTime = 0.0;
   auto t0 = Clock::now();
   if (in.Background)
   {
@@ -910,7 +925,7 @@ bool vtkCatadioptricSceneRenderer::Render()
       return fail("reference renderer");
     }
     auto tr = Clock::now();
-    in.Times[2] = Seconds(t0, t1);
+    in.Times[2] = decode + Seconds(t0, t1);
     in.Times[3] = in.Times[4] = in.Times[5] = 0.0;
     in.Times[6] = Seconds(t1, tr); // reported as the composite stage
     in.Error.clear();
@@ -945,7 +960,7 @@ bool vtkCatadioptricSceneRenderer::Render()
     return fail("composite");
   }
   auto t5 = Clock::now();
-  in.Times[2] = Seconds(t0, t1);
+  in.Times[2] = decode + Seconds(t0, t1);
   in.Times[3] = Seconds(t1, t2);
   in.Times[4] = Seconds(t2, t3);
   in.Times[5] = Seconds(t3, t4);
@@ -1037,12 +1052,17 @@ int vtkCatadioptricSceneRenderer::GetFirstPerFrameStage()
 
 double vtkCatadioptricSceneRenderer::GetFrameTime()
 {
-  double t = 0.0;
+  double t = this->Internal->FramePoseTime;
   for (int s = kFirstPerFrameStage; s < kNumberOfStages; ++s)
   {
     t += this->Internal->Times[s];
   }
   return t;
+}
+
+double vtkCatadioptricSceneRenderer::GetFramePoseTime()
+{
+  return this->Internal->FramePoseTime;
 }
 
 vtkLightCollection* vtkCatadioptricSceneRenderer::GetLights()

@@ -9,7 +9,11 @@
  * -> painter sort -> compositing onto the background (a synthesised room, a colour, or an image
  * file). The scene key `visibility` sets the compositor's Visibility (painter order or a depth
  * buffer). Meshes are prepared once; Render() can be called again after the
- * camera pose changes, and then redoes only the per-frame stages.
+ * camera pose changes, and then redoes only the per-frame stages, and of those only the work
+ * whose inputs changed: the synthesised background is traced again only when the camera (or the
+ * background's own settings) changed, not when only objects or lights moved or the camera was
+ * merely marked modified; per-triangle colours are averaged at the vertices for Gouraud shading
+ * once, not every frame.
  *
  * Consecutive objects that look alike (untextured, the same material when lit, meshes with the
  * same arrays) go through one pipeline as one mesh, so that a scene of many small objects does
@@ -190,12 +194,16 @@ public:
   ///@{
   /// Timing of the last LoadScene()/Render(): stages "scene", "meshes", "background",
   /// "projection", "lighting", "sort", "composite"; seconds. The stages from
-  /// GetFirstPerFrameStage() on run for every frame; GetFrameTime() is their sum.
+  /// GetFirstPerFrameStage() on ("background": decoding a video's frame and bringing the
+  /// background up to date, then the fast path's stages) run for every frame; GetFrameTime() is
+  /// everything the frame cost: their sum plus GetFramePoseTime(), the pose estimated from
+  /// markers for this frame (0 when none was).
   int GetNumberOfStages();
   const char* GetStageName(int stage);
   double GetStageTime(int stage);
   int GetFirstPerFrameStage();
   double GetFrameTime();
+  double GetFramePoseTime();
   ///@}
 
   /// The scene's lights (shared by every object); move them and call Render() again.

@@ -175,7 +175,13 @@ bool Measure(
   r.loadMs = Ms(t0, t1);
   r.firstMs = Ms(t1, Clock::now());
   r.triangles = renderer->GetNumberOfTriangles();
-  const int first = renderer->GetFirstPerFrameStage();
+  // The fast path's stages, projection to composite (after the background).
+  int first = renderer->GetFirstPerFrameStage();
+  while (first < renderer->GetNumberOfStages() &&
+    std::string(renderer->GetStageName(first)) != StageTimes::Name(0))
+  {
+    ++first;
+  }
   std::vector<std::vector<double>> stages(StageTimes::N);
   std::vector<double> totals;
   const auto start = Clock::now();

@@ -9,6 +9,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricEnvironmentSource.h"
 #include "vtkCatadioptricSceneRenderer.h"
+#include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
@@ -28,6 +29,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -423,4 +425,78 @@ TEST(EnvironmentSource, SceneBackgroundPanorama)
     << bad->GetLastError();
   EXPECT_NE(std::string(bad->GetLastError()).find("nowhere.jpg"), std::string::npos)
     << bad->GetLastError();
+}
+
+// The frame is kept while the camera and the source's parameters are unchanged (the camera
+// marked modified with nothing changed: the same pixels, not traced again) and made anew when
+// either changes: a new pose gives the frame a fresh source makes at that pose; back at the first
+// pose, the first frame; other samples, other pixels (those of a fresh source with them). In ROOM
+// and PANORAMA modes.
+TEST(EnvironmentSource, FrameKeptUntilTheCameraOrTheSettingsChange)
+{
+  auto bytes = [](vtkImageData* image) {
+    const auto* p = static_cast<const unsigned char*>(image->GetScalarPointer());
+    return std::vector<unsigned char>(p, p + 4 * image->GetNumberOfPoints());
+  };
+  for (const bool panorama : { false, true })
+  {
+    SCOPED_TRACE(panorama ? "panorama" : "room");
+    auto camera = SmallCamera();
+    vtkNew<vtkCatadioptricEnvironmentSource> env;
+    env->SetCamera(camera);
+    env->SetSamples(1);
+    env->SetMode(panorama ? vtkCatadioptricEnvironmentSource::PANORAMA
+                          : vtkCatadioptricEnvironmentSource::ROOM);
+    auto fresh = [&](const catar::CameraModel& model, int samples) {
+      auto other = vtkSmartPointer<vtkCatadioptricCamera>::New();
+      other->SetModel(model);
+      vtkNew<vtkCatadioptricEnvironmentSource> source;
+      source->SetCamera(other);
+      source->SetSamples(samples);
+      source->SetMode(env->GetMode());
+      source->Update();
+      return bytes(source->GetOutput());
+    };
+    env->Update();
+    vtkDataArray* pixels = env->GetOutput()->GetPointData()->GetScalars();
+    ASSERT_NE(pixels, nullptr);
+    const vtkMTimeType traced = pixels->GetMTime();
+    const std::vector<unsigned char> first = bytes(env->GetOutput());
+    EXPECT_EQ(first, fresh(camera->GetModel(), 1));
+
+    camera->Modified(); // nothing changed: kept
+    env->Update();
+    EXPECT_EQ(env->GetOutput()->GetPointData()->GetScalars(), pixels);
+    EXPECT_EQ(pixels->GetMTime(), traced);
+    EXPECT_EQ(bytes(env->GetOutput()), first);
+    int dims[3];
+    env->GetOutput()->GetDimensions(dims);
+    EXPECT_EQ(dims[0], 160);
+    EXPECT_EQ(dims[1], 120);
+
+    // The camera 3 cm to the side and turned 5 degrees: a new frame, as a fresh source's.
+    catar::CameraModel moved = SmallModel();
+    const double a = 5.0 * kPi / 180.0;
+    catar::Mat4 turn = catar::Mat4::Identity();
+    turn(0, 0) = turn(1, 1) = std::cos(a);
+    turn(0, 1) = -std::sin(a);
+    turn(1, 0) = std::sin(a);
+    turn(0, 3) = 0.03;
+    moved.worldToCamera = moved.worldToCamera * turn;
+    camera->SetModel(moved);
+    env->Update();
+    const std::vector<unsigned char> second = bytes(env->GetOutput());
+    EXPECT_NE(second, first);
+    EXPECT_EQ(second, fresh(moved, 1));
+
+    camera->SetModel(SmallModel()); // back: the first frame again
+    env->Update();
+    EXPECT_EQ(bytes(env->GetOutput()), first);
+
+    env->SetSamples(2); // the source's own parameter
+    env->Update();
+    const std::vector<unsigned char> supersampled = bytes(env->GetOutput());
+    EXPECT_NE(supersampled, first);
+    EXPECT_EQ(supersampled, fresh(SmallModel(), 2));
+  }
 }

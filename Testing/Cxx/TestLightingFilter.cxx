@@ -3,9 +3,11 @@
 // and point lights against Lambert + Phong written out here, removing one kind of light, and the
 // lighting recorded in the output.
 #include "Lighting.h"
+#include "Polygons.h"
 
 #include "vtkAppendPolyData.h"
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricColorArray.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricLightingSupport.h"
 #include "vtkCatadioptricProjection.h"
@@ -13,6 +15,8 @@
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
@@ -569,4 +573,122 @@ TEST(vtkCatadioptricLighting, OutputRecordsTheLighting)
   EXPECT_FALSE(copy->ReadFromFieldData(bad));
   EXPECT_EQ(copy->GetShadingMode(), vtkCatadioptricLighting::FLAT);
   EXPECT_FALSE(vtkCatadioptricLighting::HasLightingRecord(plate->GetFieldData()));
+}
+
+// Gouraud shading of cell colours: they are averaged at the points once and kept while the
+// colours and the polygons are unchanged. Every frame's colours are those of the same mesh given
+// the averages as point colours (what the filter computed anew every frame before): after the
+// camera is marked modified (the averages kept), and after the cell colours change (averaged
+// again).
+TEST(vtkCatadioptricLighting, CellColoursAveragedAtPointsOnceAndAgainWhenTheyChange)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  catar_test::SetSmallDemoCamera(cam);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.05, -0.3, 0.95);
+  sphere->SetRadius(0.04);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(12);
+  sphere->Update();
+  vtkNew<vtkPolyData> mesh;
+  mesh->ShallowCopy(sphere->GetOutput());
+  const vtkIdType nCells = mesh->GetNumberOfCells();
+  vtkNew<vtkUnsignedCharArray> cellColors;
+  cellColors->SetName("Colors");
+  cellColors->SetNumberOfComponents(4);
+  cellColors->SetNumberOfTuples(nCells);
+  auto paint = [&](int seed) {
+    for (vtkIdType c = 0; c < nCells; ++c)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        cellColors->SetComponent(c, k, k == 3 ? 255 : (37 * c + 91 * k + seed) % 256);
+      }
+    }
+    cellColors->Modified();
+  };
+  paint(0);
+  mesh->GetCellData()->AddArray(cellColors);
+
+  // The same mesh with the cell colours averaged at its points as float point colours.
+  vtkNew<vtkPolyData> averaged;
+  averaged->CopyStructure(mesh);
+  averaged->GetPointData()->SetNormals(mesh->GetPointData()->GetNormals());
+  vtkNew<vtkFloatArray> pointColors;
+  pointColors->SetName("Colors");
+  pointColors->SetNumberOfComponents(4);
+  pointColors->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  averaged->GetPointData()->AddArray(pointColors);
+  auto average = [&]() {
+    const float none[4] = { 0, 0, 0, 0 };
+    const vtkCatadioptricColorArray base(mesh, "Colors", none);
+    vtkNew<vtkIdList> ids;
+    const std::vector<float> mean = catar::AverageAtPoints<float>(
+      static_cast<std::size_t>(mesh->GetNumberOfPoints()), static_cast<std::size_t>(nCells), 4,
+      [&](std::size_t c, auto&& visit) {
+        mesh->GetPolys()->GetCellAtId(static_cast<vtkIdType>(c), ids);
+        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+        {
+          visit(static_cast<std::size_t>(ids->GetId(k)));
+        }
+      },
+      [&](std::size_t c, float* v) { base.Get(0, static_cast<vtkIdType>(c), v); });
+    std::copy(mean.begin(), mean.end(), pointColors->GetPointer(0));
+    pointColors->Modified();
+  };
+  average();
+
+  auto pipeline = [&](vtkPolyData* input, vtkCatadioptricProjection* proj,
+                    vtkCatadioptricLighting* lighting) {
+    proj->SetCamera(cam);
+    proj->SetInputData(input);
+    lighting->SetInputConnection(proj->GetOutputPort());
+    lighting->AddSpotLight(0.2, -0.2, 1.3, 0.05, -0.3, 0.95, 40, 1, 0.9, 0.8);
+    lighting->SetSpecular(0.4);
+    lighting->ShadowsOff();
+  };
+  vtkNew<vtkCatadioptricProjection> proj, refProj;
+  vtkNew<vtkCatadioptricLighting> lighting, reference;
+  pipeline(mesh, proj, lighting);
+  pipeline(averaged, refProj, reference);
+  auto same = [&](const char* when) {
+    lighting->Update();
+    reference->Update();
+    vtkDataArray* got = lighting->GetOutput()->GetPointData()->GetArray("Colors");
+    vtkDataArray* want = reference->GetOutput()->GetPointData()->GetArray("Colors");
+    ASSERT_NE(got, nullptr) << when;
+    ASSERT_NE(want, nullptr) << when;
+    ASSERT_EQ(got->GetNumberOfTuples(), want->GetNumberOfTuples()) << when;
+    vtkIdType differ = 0, lit = 0;
+    for (vtkIdType i = 0; i < got->GetNumberOfTuples(); ++i)
+    {
+      for (int k = 0; k < 4; ++k)
+      {
+        differ += got->GetComponent(i, k) != want->GetComponent(i, k);
+      }
+      lit += want->GetComponent(i, 3) > 0;
+    }
+    EXPECT_EQ(differ, 0) << when;
+    EXPECT_GT(lit, 50) << when;
+  };
+  same("first frame");
+  std::vector<unsigned char> first(4 * mesh->GetNumberOfPoints());
+  {
+    auto* c =
+      vtkUnsignedCharArray::SafeDownCast(lighting->GetOutput()->GetPointData()->GetArray("Colors"));
+    ASSERT_NE(c, nullptr);
+    std::copy(c->GetPointer(0), c->GetPointer(0) + first.size(), first.begin());
+  }
+  cam->Modified(); // a new frame, the colours unchanged
+  same("camera marked modified");
+  auto* again =
+    vtkUnsignedCharArray::SafeDownCast(lighting->GetOutput()->GetPointData()->GetArray("Colors"));
+  ASSERT_NE(again, nullptr);
+  EXPECT_TRUE(std::equal(first.begin(), first.end(), again->GetPointer(0)));
+  paint(40); // other cell colours: averaged again
+  average();
+  same("cell colours changed");
+  auto* changed =
+    vtkUnsignedCharArray::SafeDownCast(lighting->GetOutput()->GetPointData()->GetArray("Colors"));
+  EXPECT_FALSE(std::equal(first.begin(), first.end(), changed->GetPointer(0)));
 }

@@ -1,17 +1,20 @@
 // Sequences (Documentation/file-formats.md): frame k of a scene with a trajectory is the still
 // scene at pose k; keyframed objects are where the still scene puts them; a frame recomputes only
 // what moved; video backgrounds and outputs round-trip through OpenCV; catadioptric-render writes
-// every frame.
+// every frame; a synthesised background is traced again only when the camera moves.
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricProjection.h"
 #include "vtkCatadioptricSceneRenderer.h"
+#include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -539,4 +542,74 @@ TEST(Sequence, ProjectionFollowsATrajectoryInTime)
   EXPECT_FALSE(projection->UpdateTimeStep(0.0));
   EXPECT_GE(errors->Count, 1);
   EXPECT_NE(errors->Last.find("TrajectoryFileName"), std::string::npos) << errors->Last;
+}
+
+// A synthesised background is traced again only when the camera changes: not when only an object
+// moves, nor when the camera is merely marked modified (as catadioptric-render --repeat does);
+// after the camera moved, the frame is, byte for byte, what a fresh renderer makes at that frame.
+// The per-frame time includes the background.
+TEST(Sequence, EnvironmentBackgroundKeptUntilTheCameraMoves)
+{
+  const std::string dir = Folder("environment");
+  catar::Trajectory t;
+  t.poses = { { 0.0, Pose(0, 0) }, { 1.0, Pose(0, 0) }, { 2.0, Pose(0.02, 3) } };
+  std::string error;
+  ASSERT_TRUE(catar::SaveTrajectory(dir + "/poses.txt", t, "matrix", error)) << error;
+  const std::string torusKeys = R"(, keyframes: [ { time: 0, rotate: [ 70, 0, 20 ] },
+      { time: 1, translate: [ -0.1, -0.2, 1.0 ], rotate: [ 70, 0, 60 ] } ])";
+  std::string text = Scene(Pose(0, 0), "trajectory: poses.txt\n", "[ 70, 0, 20 ]", torusKeys);
+  const std::string color = "background: { type: color, color: [ 0.1, 0.1, 0.1 ] }";
+  ASSERT_NE(text.find(color), std::string::npos);
+  text.replace(text.find(color), color.size(), "background: { type: environment, samples: 1 }");
+  const std::string path = dir + "/scene.yaml";
+  Write(path, text);
+  auto freshFrame = [&](int k) {
+    vtkNew<vtkCatadioptricSceneRenderer> fresh;
+    fresh->SetSceneFileName(path.c_str());
+    EXPECT_TRUE(fresh->RenderFrame(k)) << fresh->GetLastError();
+    return Bytes(fresh);
+  };
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName(path.c_str());
+  ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+  ASSERT_EQ(r->GetNumberOfFrames(), 3);
+  // The background's pixels: the compositor's frame input.
+  auto background = [&]() {
+    auto* image = vtkImageData::SafeDownCast(r->GetCompositor()->GetInputDataObject(0, 0));
+    return image ? image->GetPointData()->GetScalars() : nullptr;
+  };
+  ASSERT_TRUE(r->RenderFrame(0)) << r->GetLastError();
+  vtkDataArray* pixels = background();
+  ASSERT_NE(pixels, nullptr);
+  const vtkMTimeType traced = pixels->GetMTime();
+  // The frame's time is its stages', the background's included.
+  EXPECT_STREQ(r->GetStageName(r->GetFirstPerFrameStage()), "background");
+  double stages = r->GetFramePoseTime();
+  for (int s = r->GetFirstPerFrameStage(); s < r->GetNumberOfStages(); ++s)
+  {
+    stages += r->GetStageTime(s);
+  }
+  EXPECT_DOUBLE_EQ(r->GetFrameTime(), stages);
+  EXPECT_GT(r->GetStageTime(r->GetFirstPerFrameStage()), 0.0);
+
+  ASSERT_TRUE(r->RenderFrame(1)); // only the torus moved
+  EXPECT_EQ(background(), pixels);
+  EXPECT_EQ(pixels->GetMTime(), traced);
+  const std::vector<unsigned char> frame1 = Bytes(r);
+  EXPECT_EQ(frame1, freshFrame(1));
+
+  r->GetCamera()->Modified(); // marked modified, unchanged: every per-frame stage runs again
+  const vtkMTimeType projected = r->GetProjection(0)->GetOutput()->GetMTime();
+  ASSERT_TRUE(r->Render());
+  EXPECT_GT(r->GetProjection(0)->GetOutput()->GetMTime(), projected);
+  EXPECT_EQ(background(), pixels);
+  EXPECT_EQ(pixels->GetMTime(), traced);
+  EXPECT_EQ(Bytes(r), frame1);
+
+  ASSERT_TRUE(r->RenderFrame(2)); // the camera moved: traced again
+  ASSERT_NE(background(), nullptr);
+  EXPECT_GT(background()->GetMTime(), traced);
+  const std::vector<unsigned char> frame2 = Bytes(r);
+  EXPECT_GT(DifferingShare(frame2, frame1, 0), 0.1);
+  EXPECT_EQ(frame2, freshFrame(2));
 }
