@@ -379,7 +379,9 @@ void RayTracer::BackProjectTileRows(const Projector& projector, int r0, int r1)
       }
       // Rounded up: the bounds must hold every ray (the tests below pad them again).
       tile.radius = static_cast<float>(radius * (1.0 + 1e-6) + 1e-9 * centre.norm());
-      tile.angle = static_cast<float>(std::min(kPi, angle + 1e-6));
+      angle = std::min(kPi, angle + 1e-6);
+      tile.cosAngle = std::cos(angle);
+      tile.sinAngle = std::sin(angle);
     }
   }
 }
@@ -388,7 +390,9 @@ bool RayTracer::TileMeetsSphere(const Tile& tile, const Vec3& c, double r)
 {
   // A ray from a point within tile.radius of the centre meets the sphere only if the ray from
   // the centre with the same direction meets the sphere grown by that radius: its direction is
-  // then within asin(R / distance) of the sphere's centre, and within tile.angle of the axis.
+  // then within b = asin(R / distance) of the sphere's centre, and within a + b of the axis (a:
+  // the tile's angle). With cosines: a + b >= pi (everything passes) when cos a <= -cos b, else
+  // the test is cos(angle to the centre) >= cos(a + b) = cos a cos b - sin a sin b.
   const Vec3 o(tile.centre[0], tile.centre[1], tile.centre[2]);
   const Vec3 v = c - o;
   const double distance = v.norm();
@@ -398,13 +402,17 @@ bool RayTracer::TileMeetsSphere(const Tile& tile, const Vec3& c, double r)
   {
     return true;
   }
-  const double limit = tile.angle + std::asin(grown / distance) + 1e-6;
-  if (limit >= kPi)
+  const double sinB = grown / distance;
+  const double cosB = std::sqrt(1.0 - sinB * sinB);
+  // The padding of the angle: b grown by about 1e-6.
+  const double cosA = tile.cosAngle, sinA = tile.sinAngle;
+  const double cosPadded = cosB * (1.0 - 5e-13) - sinB * 1e-6, sinPadded = sinB + cosB * 1e-6;
+  if (cosA <= -cosPadded)
   {
     return true;
   }
   const Vec3 axis(tile.axis[0], tile.axis[1], tile.axis[2]);
-  return v.dot(axis) >= distance * axis.norm() * std::cos(limit);
+  return v.dot(axis) >= distance * axis.norm() * (cosA * cosPadded - sinA * sinPadded);
 }
 
 void RayTracer::ShadeHit(const Vec3& origin, const Vec3& direction, const RayScene::Hit& hit,

@@ -152,13 +152,15 @@ private:
   using Ray = RayScene::Ray;
 
   /// What the tile culling knows of a tile's rays (camera frame): every origin lies within
-  /// `radius` of `centre`, every direction within `angle` of the unit `axis`.
+  /// `radius` of `centre`, every direction within an angle (of cosine `cosAngle` and sine
+  /// `sinAngle`) of the unit `axis`.
   struct Tile
   {
     float centre[3];
     float radius;
     float axis[3];
-    float angle;
+    double cosAngle; // double: the cosine of a small angle in single precision loses it
+    double sinAngle;
     std::uint32_t rays; ///< samples of the tile that reflect off the mirror
   };
 

@@ -645,13 +645,11 @@ int vtkCatadioptricRayTracer::RequestData(
   for (int part = 0; part < kParts; ++part)
   {
     const int b0 = bands * part / kParts, b1 = bands * (part + 1) / kParts;
-    vtkCatadioptricParallel::For(b0, b1, 1, [&](vtkIdType b, vtkIdType e) {
-      for (vtkIdType band = b; band < e; ++band)
-      {
-        tracer.RenderRows(view, idData, -static_cast<std::ptrdiff_t>(width),
-          static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand),
-          &statistics[static_cast<size_t>(band)], pathData);
-      }
+    // A band at a time to whichever thread is free: the object fills a few bands only.
+    vtkCatadioptricParallel::ForEachIndex(b0, b1, [&](vtkIdType band) {
+      tracer.RenderRows(view, idData, -static_cast<std::ptrdiff_t>(width),
+        static_cast<int>(band * kBand), static_cast<int>((band + 1) * kBand),
+        &statistics[static_cast<size_t>(band)], pathData);
     });
     this->UpdateProgress(0.3 + 0.7 * (part + 1) / kParts);
   }
