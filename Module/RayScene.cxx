@@ -7,6 +7,8 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace catar
 {
@@ -15,6 +17,30 @@ struct RayScene::Internals
   RTCDevice Device = nullptr;
   int DeviceThreads = -1; // the threads the device was made with
   RTCScene Scene = nullptr;
+  // Per mesh of the last Build: its points and triangles, and its points' bounds.
+  struct Mesh
+  {
+    std::size_t points = 0;
+    std::size_t triangles = 0;
+    Vec3 lo, hi;
+  };
+  std::vector<Mesh> Meshes;
+
+  // The diagonal of the meshes' bounds.
+  double Size() const
+  {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    for (const Mesh& m : this->Meshes)
+    {
+      if (m.points > 0)
+      {
+        lo = lo.cwiseMin(m.lo);
+        hi = hi.cwiseMax(m.hi);
+      }
+    }
+    return lo.x() <= hi.x() ? (hi - lo).norm() : 0.0;
+  }
 
   void ReleaseScene()
   {
@@ -23,6 +49,7 @@ struct RayScene::Internals
       rtcReleaseScene(this->Scene);
       this->Scene = nullptr;
     }
+    this->Meshes.clear();
   }
   void Release()
   {
@@ -49,6 +76,39 @@ struct RayScene::Internals
   }
   ~Internals() { this->Release(); }
 };
+
+namespace
+{
+// Finite points within kMaxCoordinate, and their bounds; else false with `error`.
+bool CheckPoints(const float* points, std::size_t n, Vec3& lo, Vec3& hi, std::string& error)
+{
+  lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const float* p = points + 3 * i;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (!std::isfinite(p[k]))
+      {
+        error = "vertex coordinates contain NaN or Inf";
+        return false;
+      }
+      // Embree's bounds arithmetic (single precision) overflows and aborts on larger ones.
+      if (std::abs(p[k]) > RayScene::kMaxCoordinate)
+      {
+        error = "vertex coordinates beyond +-1e12 cannot be ray traced (a coordinate is " +
+          std::to_string(p[k]) + ")";
+        return false;
+      }
+    }
+    const Vec3 q(p[0], p[1], p[2]);
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  return true;
+}
+} // namespace
 
 RayScene::RayScene()
   : Internal(new Internals)
@@ -82,11 +142,11 @@ bool RayScene::Build(const std::vector<MeshView>& meshes)
   this->Error.clear();
   this->SceneSize = 0.0;
   this->NumberOfTriangles = 0;
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-  Vec3 hi = -lo;
   std::size_t triangleCount = 0;
-  for (const MeshView& mesh : meshes)
+  std::vector<Internals::Mesh> info(meshes.size());
+  for (std::size_t m = 0; m < meshes.size(); ++m)
   {
+    const MeshView& mesh = meshes[m];
     const std::size_t nv = mesh.pointCount;
     for (std::size_t i = 0; i < 3 * mesh.triangleCount; ++i)
     {
@@ -96,28 +156,12 @@ bool RayScene::Build(const std::vector<MeshView>& meshes)
         return false;
       }
     }
-    for (std::size_t i = 0; i < nv; ++i)
+    if (!CheckPoints(mesh.points, nv, info[m].lo, info[m].hi, this->Error))
     {
-      const float* p = mesh.points + 3 * i;
-      for (int k = 0; k < 3; ++k)
-      {
-        if (!std::isfinite(p[k]))
-        {
-          this->Error = "vertex coordinates contain NaN or Inf";
-          return false;
-        }
-        // Embree's bounds arithmetic (single precision) overflows and aborts on larger ones.
-        if (std::abs(p[k]) > kMaxCoordinate)
-        {
-          this->Error = "vertex coordinates beyond +-1e12 cannot be ray traced (a coordinate is " +
-            std::to_string(p[k]) + ")";
-          return false;
-        }
-      }
-      const Vec3 q(p[0], p[1], p[2]);
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
+      return false;
     }
+    info[m].points = nv;
+    info[m].triangles = mesh.triangleCount;
     triangleCount += mesh.triangleCount;
   }
   if (meshes.size() > std::numeric_limits<std::uint32_t>::max() / 2)
@@ -131,9 +175,13 @@ bool RayScene::Build(const std::vector<MeshView>& meshes)
     return false;
   }
   in.Scene = rtcNewScene(in.Device);
-  rtcSetSceneBuildQuality(in.Scene, RTC_BUILD_QUALITY_MEDIUM);
+  // Dynamic: the two-level scene, where each mesh's structure (built as the medium quality's,
+  // refitted when its points move) is its own.
+  rtcSetSceneBuildQuality(
+    in.Scene, this->Dynamic ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
   // Watertight: rays through shared edges and vertices must not slip between triangles.
-  rtcSetSceneFlags(in.Scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(in.Scene,
+    this->Dynamic ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_ROBUST);
   for (std::size_t m = 0; m < meshes.size(); ++m)
   {
     const MeshView& mesh = meshes[m];
@@ -155,6 +203,10 @@ bool RayScene::Build(const std::vector<MeshView>& meshes)
     }
     std::memcpy(v, mesh.points, 3 * mesh.pointCount * sizeof(float));
     std::memcpy(t, mesh.triangles, 3 * mesh.triangleCount * sizeof(std::uint32_t));
+    if (this->Dynamic)
+    {
+      rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_REFIT);
+    }
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(in.Scene, geom, static_cast<unsigned int>(m));
     rtcReleaseGeometry(geom);
@@ -166,8 +218,66 @@ bool RayScene::Build(const std::vector<MeshView>& meshes)
     in.ReleaseScene();
     return false;
   }
-  this->SceneSize = lo.x() <= hi.x() ? (hi - lo).norm() : 0.0;
+  in.Meshes = std::move(info);
+  this->SceneSize = in.Size();
   this->NumberOfTriangles = triangleCount;
+  return true;
+}
+
+bool RayScene::UpdatePoints(std::size_t mesh, const float* points)
+{
+  Internals& in = *this->Internal;
+  this->Error.clear();
+  if (!this->Dynamic || !in.Scene || mesh >= in.Meshes.size())
+  {
+    this->Error = "only the meshes of a dynamic scene can be given new points";
+    return false;
+  }
+  Internals::Mesh& info = in.Meshes[mesh];
+  Vec3 lo, hi;
+  if (!CheckPoints(points, info.points, lo, hi, this->Error))
+  {
+    return false;
+  }
+  info.lo = lo;
+  info.hi = hi;
+  if (info.triangles == 0)
+  {
+    return true; // no geometry: only the bounds
+  }
+  RTCGeometry geom = rtcGetGeometry(in.Scene, static_cast<unsigned int>(mesh));
+  float* v =
+    geom ? static_cast<float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0)) : nullptr;
+  if (!v)
+  {
+    this->Error = "Embree: no vertex buffer to update";
+    return false;
+  }
+  std::memcpy(v, points, 3 * info.points * sizeof(float));
+  rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+  rtcCommitGeometry(geom);
+  return true;
+}
+
+bool RayScene::Commit()
+{
+  Internals& in = *this->Internal;
+  this->Error.clear();
+  if (!in.Scene)
+  {
+    this->Error = "no scene to commit";
+    return false;
+  }
+  rtcCommitScene(in.Scene);
+  if (rtcGetDeviceError(in.Device) != RTC_ERROR_NONE)
+  {
+    this->Error = "Embree: the scene could not be refitted";
+    in.ReleaseScene();
+    this->SceneSize = 0.0;
+    this->NumberOfTriangles = 0;
+    return false;
+  }
+  this->SceneSize = in.Size();
   return true;
 }
 

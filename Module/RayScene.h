@@ -51,6 +51,25 @@ public:
   bool Build(const std::vector<MeshView>& meshes);
 
   ///@{
+  /// A scene whose meshes' points change from frame to frame (set before Build): each mesh gets
+  /// an acceleration structure of its own under a small one over the meshes (Embree's two-level
+  /// scene), so that UpdatePoints refits a mesh's structure to its moved points in place of
+  /// building it again. Off (the default): one structure over all the triangles.
+  void SetDynamic(bool dynamic) { this->Dynamic = dynamic; }
+  bool GetDynamic() const { return this->Dynamic; }
+  ///@}
+
+  /// For a dynamic scene built by Build(meshes): gives mesh `mesh` new point coordinates (as many
+  /// as it was built with, x y z each; its triangles stay). Takes effect at Commit(). False (with
+  /// GetError()) for a scene that is not dynamic, a mesh that does not exist, NaN, Inf or
+  /// coordinates beyond kMaxCoordinate: the scene is then left as it was built or last committed
+  /// (call Build again).
+  bool UpdatePoints(std::size_t mesh, const float* points);
+  /// Refits the acceleration structures of the meshes given new points since the last Build or
+  /// Commit. False (with GetError()) when Embree fails: the scene is then empty.
+  bool Commit();
+
+  ///@{
   /// Threads that build the acceleration structure (Embree's own, TBB's workers): 1 (the default)
   /// builds on the calling thread alone; 0 uses every hardware thread. Takes effect at the next
   /// Build.
@@ -96,6 +115,7 @@ private:
   double SceneSize = 0.0;
   std::size_t NumberOfTriangles = 0;
   int BuildThreads = 1;
+  bool Dynamic = false;
   std::string Error;
 };
 

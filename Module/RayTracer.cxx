@@ -188,15 +188,25 @@ bool RayTracer::SetScene(const std::vector<std::shared_ptr<const TraceMesh>>& me
   }
   if (!keep)
   {
-    // The acceleration structure, one Embree geometry per mesh, and the bounds of the triangles.
+    // Meshes given anew with the triangles and the number of points of the ones they replace:
+    // their structures refitted to the new points; else the acceleration structure built again,
+    // one Embree geometry per mesh.
+    bool refit = hadScene && meshes.size() == this->Meshes.size() && this->Scene.GetDynamic();
+    for (std::size_t m = 0; refit && m < meshes.size(); ++m)
+    {
+      refit = known[m] ||
+        (meshes[m]->points.size() == this->Meshes[m]->points.size() &&
+          meshes[m]->triangles == this->Meshes[m]->triangles);
+    }
     std::vector<std::vector<float>> points(meshes.size());
     std::vector<RayScene::MeshView> views(meshes.size());
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-    Vec3 hi = -lo;
-    bool any = false;
     for (std::size_t m = 0; m < meshes.size(); ++m)
     {
       const TraceMesh& mesh = *meshes[m];
+      if (refit && known[m])
+      {
+        continue;
+      }
       points[m].resize(3 * mesh.points.size());
       for (std::size_t i = 0; i < mesh.points.size(); ++i)
       {
@@ -205,28 +215,71 @@ bool RayTracer::SetScene(const std::vector<std::shared_ptr<const TraceMesh>>& me
           points[m][3 * i + k] = static_cast<float>(mesh.points[i][k]);
         }
       }
-      for (const auto& t : mesh.triangles)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          lo = lo.cwiseMin(mesh.points[t[k]]);
-          hi = hi.cwiseMax(mesh.points[t[k]]);
-        }
-      }
-      any = any || !mesh.triangles.empty();
       views[m].points = points[m].data();
       views[m].pointCount = mesh.points.size();
       views[m].triangles = mesh.triangles.empty() ? nullptr : mesh.triangles.front().data();
       views[m].triangleCount = mesh.triangles.size();
     }
-    this->Scene.SetBuildThreads(buildThreads);
-    if (!this->Scene.Build(views))
+    if (refit)
     {
-      this->Error = "building the ray scene failed: " + this->Scene.GetError();
-      this->Meshes.clear();
-      return false;
+      for (std::size_t m = 0; refit && m < meshes.size(); ++m)
+      {
+        refit = known[m] || this->Scene.UpdatePoints(m, points[m].data());
+      }
+      refit = refit && this->Scene.Commit();
+      if (refit)
+      {
+        ++this->Refits;
+      }
     }
-    ++this->Builds;
+    if (!refit)
+    {
+      for (std::size_t m = 0; m < meshes.size(); ++m)
+      {
+        if (views[m].points == nullptr && !meshes[m]->points.empty())
+        {
+          // Skipped above for a refit that failed: converted now.
+          const TraceMesh& mesh = *meshes[m];
+          points[m].resize(3 * mesh.points.size());
+          for (std::size_t i = 0; i < mesh.points.size(); ++i)
+          {
+            for (int k = 0; k < 3; ++k)
+            {
+              points[m][3 * i + k] = static_cast<float>(mesh.points[i][k]);
+            }
+          }
+          views[m].points = points[m].data();
+          views[m].pointCount = mesh.points.size();
+          views[m].triangles = mesh.triangles.empty() ? nullptr : mesh.triangles.front().data();
+          views[m].triangleCount = mesh.triangles.size();
+        }
+      }
+      this->Scene.SetBuildThreads(buildThreads);
+      this->Scene.SetDynamic(true);
+      if (!this->Scene.Build(views))
+      {
+        this->Error = "building the ray scene failed: " + this->Scene.GetError();
+        this->Meshes.clear();
+        return false;
+      }
+      ++this->Builds;
+    }
+    // The bounds of the triangles.
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    bool any = false;
+    for (const auto& m : meshes)
+    {
+      for (const auto& t : m->triangles)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          lo = lo.cwiseMin(m->points[t[k]]);
+          hi = hi.cwiseMax(m->points[t[k]]);
+        }
+      }
+      any = any || !m->triangles.empty();
+    }
     // Grow the box a little: Embree's single precision must not lose grazing hits.
     const Vec3 pad = Vec3::Constant(1e-6 * std::max(1.0, (hi - lo).norm()));
     this->BoundsMin = any ? Vec3(lo - pad) : Vec3::Zero();

@@ -110,8 +110,12 @@ public:
   bool SetScene(const std::vector<TraceMesh>& meshes, const std::vector<TextureView>& textures,
     const std::vector<LightSource>& lights, const Vec3& globalAmbient, bool shadows);
 
-  /// Times the acceleration structure was built (by SetScene calls that succeeded).
+  /// Times the acceleration structure was built (by SetScene calls that succeeded), and times
+  /// it was refitted: when every mesh given anew has the same triangles and number of points as
+  /// the one it replaces (and no mesh is added or removed), its structure is refitted to the new
+  /// points (RayScene's dynamic scene) in place of building the scene again.
   std::size_t GetNumberOfBuilds() const { return this->Builds; }
+  std::size_t GetNumberOfRefits() const { return this->Refits; }
 
   /// Sets the camera: back-projects the N x N samples (N = samples, 1..8) of every pixel of
   /// `projector`'s image in the camera frame and keeps the reflected rays (single precision, as
@@ -189,6 +193,7 @@ private:
   bool Shadows = false;
   RayScene Scene;
   std::size_t Builds = 0;
+  std::size_t Refits = 0;
   Vec3 BoundsMin = Vec3::Zero();
   Vec3 BoundsMax = Vec3::Zero();
   Vec3 SphereCentre = Vec3::Zero(); ///< world; encloses the bounding box

@@ -181,6 +181,11 @@ vtkIdType vtkCatadioptricRayTracer::GetNumberOfSceneBuilds()
   return static_cast<vtkIdType>(this->Internal->Tracer.GetNumberOfBuilds());
 }
 
+vtkIdType vtkCatadioptricRayTracer::GetNumberOfSceneRefits()
+{
+  return static_cast<vtkIdType>(this->Internal->Tracer.GetNumberOfRefits());
+}
+
 vtkIdType vtkCatadioptricRayTracer::GetNumberOfRayBackProjections()
 {
   return static_cast<vtkIdType>(this->Internal->Tracer.GetNumberOfRayPreparations());
@@ -259,17 +264,20 @@ std::string UpdateTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting
   vtkPoints* points = mesh->GetPoints();
   vtkCellArray* cells[3] = { mesh->GetVerts(), mesh->GetLines(), mesh->GetPolys() };
   vtkDataArray* original = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
-  bool sameGeometry = entry.Trace && entry.HasMesh && entry.Mesh == mesh &&
-    entry.MeshTime == mesh->vtkObject::GetMTime() && entry.Points == points &&
-    entry.PointsTime == (points ? points->GetMTime() : 0) && entry.Original == original &&
-    entry.OriginalTime == (original ? original->GetMTime() : 0);
+  // The cells (and the ids they report) alone the same: the triangles are kept.
+  bool sameCells = entry.Trace && entry.HasMesh && entry.Mesh == mesh &&
+    entry.Original == original && entry.OriginalTime == (original ? original->GetMTime() : 0);
   for (int k = 0; k < 3; ++k)
   {
-    sameGeometry = sameGeometry && entry.Cells[k] == cells[k] &&
+    sameCells = sameCells && entry.Cells[k] == cells[k] &&
       entry.CellsTime[k] == (cells[k] ? cells[k]->GetMTime() : 0);
   }
+  const bool sameGeometry = sameCells && entry.MeshTime == mesh->vtkObject::GetMTime() &&
+    entry.Points == points && entry.PointsTime == (points ? points->GetMTime() : 0);
   if (!sameGeometry)
   {
+    // A new TraceMesh: the tracer refits or builds the scene again for it.
+    MeshEntry previous = std::move(entry);
     entry = MeshEntry();
     entry.Trace = std::make_shared<catar::TraceMesh>();
     catar::TraceMesh& tm = *entry.Trace;
@@ -282,27 +290,36 @@ std::string UpdateTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting
         tm.points[i] = V3(p);
       }
     });
-    const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
-    vtkCellArray* polys = mesh->GetPolys();
-    const vtkIdType nPolys = polys->GetNumberOfCells();
-    tm.triangles.reserve(static_cast<std::size_t>(nPolys));
-    entry.TriangleCells.reserve(static_cast<std::size_t>(nPolys));
-    tm.triangleIds.reserve(static_cast<std::size_t>(nPolys));
-    vtkNew<vtkIdList> ids;
-    for (vtkIdType c = 0; c < nPolys; ++c)
+    if (sameCells)
     {
-      vtkIdType size;
-      const vtkIdType* pts;
-      polys->GetCellAtId(c, size, pts, ids);
-      catar::PolygonTriangles(
-        pts, static_cast<std::size_t>(size), [&](vtkIdType a, vtkIdType b, vtkIdType d) {
-          tm.triangles.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
-            static_cast<std::uint32_t>(d) });
-          entry.TriangleCells.push_back(firstCell + c);
-          tm.triangleIds.push_back(original
-              ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
-              : static_cast<catar::RasterId>(firstCell + c));
-        });
+      tm.triangles = previous.Trace->triangles;
+      tm.triangleIds = previous.Trace->triangleIds;
+      entry.TriangleCells = std::move(previous.TriangleCells);
+    }
+    else
+    {
+      const vtkIdType firstCell = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+      vtkCellArray* polys = mesh->GetPolys();
+      const vtkIdType nPolys = polys->GetNumberOfCells();
+      tm.triangles.reserve(static_cast<std::size_t>(nPolys));
+      entry.TriangleCells.reserve(static_cast<std::size_t>(nPolys));
+      tm.triangleIds.reserve(static_cast<std::size_t>(nPolys));
+      vtkNew<vtkIdList> ids;
+      for (vtkIdType c = 0; c < nPolys; ++c)
+      {
+        vtkIdType size;
+        const vtkIdType* pts;
+        polys->GetCellAtId(c, size, pts, ids);
+        catar::PolygonTriangles(
+          pts, static_cast<std::size_t>(size), [&](vtkIdType a, vtkIdType b, vtkIdType d) {
+            tm.triangles.push_back({ static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+              static_cast<std::uint32_t>(d) });
+            entry.TriangleCells.push_back(firstCell + c);
+            tm.triangleIds.push_back(original
+                ? static_cast<catar::RasterId>(original->GetComponent(firstCell + c, 0))
+                : static_cast<catar::RasterId>(firstCell + c));
+          });
+      }
     }
     entry.Mesh = mesh;
     entry.HasMesh = true;

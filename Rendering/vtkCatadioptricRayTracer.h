@@ -40,11 +40,12 @@
  * acceleration structure) and the meshes' triangles while every mesh is the same object with the
  * same points, cells and OriginalCellId, unmodified (a light, a pose or a material that changes
  * only re-traces); the colours, normals and texture coordinates read from a mesh while, in
- * addition, its point and cell data are unmodified. A scene to build again is built by Embree on
- * the threads of vtkSMPTools' setting. Tiles of 8 x 8 pixels whose rays cannot reach the meshes'
- * bounding sphere are skipped whole, rays that cannot reach their bounding box are not traced, the
- * others are traced a tile at a time (Embree's ray streams). Work is split into bands of rows with
- * vtkSMPTools.
+ * addition, its point and cell data are unmodified. Meshes whose points changed but not their
+ * triangles refit the scene (Embree's two-level scene: each mesh's structure refitted to its
+ * points); other changes build it again, with Embree on the threads of vtkSMPTools' setting. Tiles
+ * of 8 x 8 pixels whose rays cannot reach the meshes' bounding sphere are skipped whole, rays that
+ * cannot reach their bounding box are not traced, the others are traced a tile at a time (Embree's
+ * ray streams). Work is split into bands of rows with vtkSMPTools.
  */
 #ifndef vtkCatadioptricRayTracer_h
 #define vtkCatadioptricRayTracer_h
@@ -151,10 +152,12 @@ public:
 
   ///@{
   /// What this tracer has made since it was created: ray scenes (acceleration structures) built,
-  /// and times the rays were back-projected. A new pose or light adds to neither; a mesh that
-  /// changed (or was added or removed) builds the scene again; another lens, mirror, image size or
-  /// sample count back-projects the rays again.
+  /// ray scenes refitted to moved points, and times the rays were back-projected. A new pose or
+  /// light adds to none; meshes whose points changed (same triangles) refit the scene; a mesh
+  /// whose cells changed, or one added or removed, builds it again; another lens, mirror, image
+  /// size or sample count back-projects the rays again.
   vtkIdType GetNumberOfSceneBuilds();
+  vtkIdType GetNumberOfSceneRefits();
   vtkIdType GetNumberOfRayBackProjections();
   ///@}
 

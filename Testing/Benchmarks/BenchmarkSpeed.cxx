@@ -18,13 +18,15 @@
 // --reference measures only the exact reference renderer (one ray per pixel, Gouraud, one
 // spotlight) on the bunny (or the sphere of the same size), frame by frame interleaved with the
 // fast path's frame in the same process: with only the light moving, with only the camera's pose
-// moving a little, and with the mesh's points marked modified every frame (the ray scene rebuilt).
+// moving a little, with the mesh's points moving (the ray scene refitted) and with its cells
+// marked modified (the ray scene built again) every frame.
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
 
 #include "vtkCatadioptricParallel.h"
 #include "vtkCatadioptricRayTracer.h"
 #include "vtkCatadioptricRemesher.h"
+#include "vtkCellArray.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPLYReader.h"
 #include "vtkPoints.h"
@@ -117,7 +119,8 @@ bool WriteCsv(const std::string& file, const std::vector<Result>& results)
 // The exact reference renderer against the fast path, frame by frame in turn (the machine's speed
 // drifts): the fast path's full frame (moving spotlight); the reference with only the spotlight
 // moving; with only the camera's pose moving (a fraction of a millimetre and of a degree); with
-// the mesh's points marked modified (the ray scene rebuilt every frame). Median times.
+// the mesh's points moving (the ray scene refitted every frame); with its cells marked modified
+// (the ray scene built again every frame). Median times.
 int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptricCamera* camera,
   vtkImageData* frame, int frames, double maxSeconds, const std::string& csv)
 {
@@ -148,7 +151,9 @@ int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptric
   poseTracer->AddMeshData(target);
   poseTracer->SetMeshLighting(0, stillLight);
 
-  // Mesh modified: a copy of the mesh whose points are marked modified every frame.
+  // Mesh moved: a copy of the mesh whose points move (by up to 1 mm) every frame, marked modified
+  // (the ray scene refitted); mesh rebuilt: a copy whose cells change every frame, all of them and
+  // all but the last in turn (the ray scene built again).
   vtkNew<vtkPolyData> copy;
   copy->DeepCopy(target);
   vtkNew<vtkCatadioptricRayTracer> meshTracer;
@@ -156,6 +161,32 @@ int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptric
   meshTracer->SetFrameData(frame);
   meshTracer->AddMeshData(copy);
   meshTracer->SetMeshLighting(0, stillLight);
+  vtkNew<vtkPolyData> copy2;
+  copy2->DeepCopy(target);
+  vtkNew<vtkCatadioptricRayTracer> cellsTracer;
+  cellsTracer->SetCamera(camera);
+  cellsTracer->SetFrameData(frame);
+  cellsTracer->AddMeshData(copy2);
+  cellsTracer->SetMeshLighting(0, stillLight);
+  vtkSmartPointer<vtkCellArray> allCells = copy2->GetPolys();
+  vtkNew<vtkCellArray> fewerCells;
+  fewerCells->DeepCopy(allCells);
+  fewerCells->ResizeExact(
+    allCells->GetNumberOfCells() - 1, allCells->GetNumberOfConnectivityIds() - 3);
+  double previousShift = 0.0;
+  auto movePoints = [&](int f) {
+    const double shift = 0.001 * std::sin(0.3 * f);
+    vtkPoints* points = copy->GetPoints();
+    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      points->GetPoint(i, p);
+      p[0] += shift - previousShift;
+      points->SetPoint(i, p);
+    }
+    previousShift = shift;
+    points->Modified();
+  };
 
   // A small camera motion for frame f: world-to-camera = (rotation about the camera's y axis by up
   // to 0.3 degrees, translation by up to 0.5 mm) * the start.
@@ -169,13 +200,16 @@ int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptric
     movingCamera->SetWorldToCameraElements(m);
   };
 
-  const char* labels[4] = { "fast path (1 spot, gouraud, painter, iterative)",
-    "reference, light moving", "reference, camera pose moving", "reference, mesh modified" };
-  std::vector<double> times[4];
+  constexpr int kRows = 5;
+  const char* labels[kRows] = { "fast path (1 spot, gouraud, painter, iterative)",
+    "reference, light moving", "reference, camera pose moving",
+    "reference, mesh points moving (scene refitted)",
+    "reference, mesh cells modified (scene built)" };
+  std::vector<double> times[kRows];
   const auto begin = Clock::now();
   for (int f = 0; f <= frames; ++f) // frame 0: warm-up (rays and ray scene made)
   {
-    double ms[4];
+    double ms[kRows];
     ms[0] = pipeline.Frame(f).Total();
     auto t0 = Clock::now();
     lightTracer->Update();
@@ -184,13 +218,17 @@ int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptric
     t0 = Clock::now();
     poseTracer->Update();
     ms[2] = Ms(t0, Clock::now());
-    copy->GetPoints()->Modified();
+    movePoints(f);
     t0 = Clock::now();
     meshTracer->Update();
     ms[3] = Ms(t0, Clock::now());
+    copy2->SetPolys(f % 2 ? fewerCells.Get() : allCells.Get());
+    t0 = Clock::now();
+    cellsTracer->Update();
+    ms[4] = Ms(t0, Clock::now());
     if (f > 0)
     {
-      for (int k = 0; k < 4; ++k)
+      for (int k = 0; k < kRows; ++k)
       {
         times[k].push_back(ms[k]);
       }
@@ -207,7 +245,7 @@ int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptric
               "|---|---|---|---|---|---|---|\n");
   std::vector<Result> results;
   const double fast = Median(times[0]);
-  for (int k = 0; k < 4; ++k)
+  for (int k = 0; k < kRows; ++k)
   {
     Result r{ name, labels[k], target->GetNumberOfPolys(), {}, Median(times[k]) };
     r.stages.ms = { 0, 0, 0, r.frameMs };

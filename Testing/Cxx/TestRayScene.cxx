@@ -232,3 +232,50 @@ TEST(RayTracer, SkippedTilesAndNewPosesChangeNoPixel)
   ASSERT_TRUE(tracer.PrepareRays(Projector(model), 2));
   EXPECT_EQ(tracer.GetNumberOfRayPreparations(), 2u);
 }
+
+TEST(RayScene, DynamicScenesRefitMovedPoints)
+{
+  std::vector<float> a, c;
+  std::vector<std::uint32_t> ta, tc;
+  AddSquare(a, ta, 1.0f);
+  AddSquare(c, tc, 3.0f);
+  for (std::size_t i = 0; i < c.size(); i += 3)
+  {
+    c[i] += 2.0f; // beside the first
+  }
+  std::vector<RayScene::MeshView> meshes(2);
+  meshes[0] = { a.data(), a.size() / 3, ta.data(), ta.size() / 3 };
+  meshes[1] = { c.data(), c.size() / 3, tc.data(), tc.size() / 3 };
+  RayScene scene;
+  EXPECT_FALSE(scene.UpdatePoints(0, a.data())); // nothing built
+  scene.SetDynamic(true);
+  ASSERT_TRUE(scene.Build(meshes)) << scene.GetError();
+  // The first square moved up to z = 1.5 and along x by 0.25.
+  std::vector<float> moved = a;
+  for (std::size_t i = 0; i < moved.size(); i += 3)
+  {
+    moved[i] += 0.25f;
+    moved[i + 2] = 1.5f;
+  }
+  ASSERT_TRUE(scene.UpdatePoints(0, moved.data())) << scene.GetError();
+  ASSERT_TRUE(scene.Commit()) << scene.GetError();
+  const RayScene::Hit h = scene.Intersect(Vec3(1.1, 0.5, 0.0), Vec3(0, 0, 1), 0.0, 10.0);
+  ASSERT_TRUE(h.hit); // x = 1.1: inside the moved square only
+  EXPECT_EQ(h.mesh, 0u);
+  EXPECT_NEAR(h.t, 1.5, 1e-6);
+  EXPECT_FALSE(scene.Intersect(Vec3(0.1, 0.5, 0.0), Vec3(0, 0, 1), 0.0, 10.0).hit);
+  const RayScene::Hit other = scene.Intersect(Vec3(2.5, 0.5, 0.0), Vec3(0, 0, 1), 0.0, 10.0);
+  ASSERT_TRUE(other.hit);
+  EXPECT_EQ(other.mesh, 1u);
+  EXPECT_NEAR(other.t, 3.0, 1e-6);
+  // The scene's size follows the points: from (0.25, 0, 1.5) to (3, 1, 3).
+  EXPECT_NEAR(scene.GetSceneSize(), std::sqrt(2.75 * 2.75 + 1.0 + 1.5 * 1.5), 1e-6);
+  // Bad points are refused and leave the scene as it was.
+  std::vector<float> bad = moved;
+  bad[4] = std::nanf("");
+  EXPECT_FALSE(scene.UpdatePoints(0, bad.data()));
+  EXPECT_FALSE(scene.GetError().empty());
+  EXPECT_FALSE(scene.UpdatePoints(2, moved.data())); // no such mesh
+  ASSERT_TRUE(scene.Commit());
+  EXPECT_TRUE(scene.Intersect(Vec3(1.1, 0.5, 0.0), Vec3(0, 0, 1), 0.0, 10.0).hit);
+}

@@ -15,6 +15,7 @@
 #include "vtkCellData.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
 #include "vtkLight.h"
@@ -631,8 +632,9 @@ TEST(vtkCatadioptricRayTracer, KeptSceneAndRaysGiveAFreshTracersPicture)
   EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1);
 }
 
-// A mesh whose points are changed in place, marked modified by its points or by itself, and a
-// mesh added or taken away: the scene is built again and the picture is a fresh tracer's.
+// A mesh whose points are changed in place, marked modified by its points or by itself (the scene
+// refitted), whose cells change, and a mesh added or taken away (the scene built again): the
+// picture is a fresh tracer's.
 TEST(vtkCatadioptricRayTracer, ChangedMeshesBuildTheSceneAgain)
 {
   auto camera = DemoCamera();
@@ -663,7 +665,8 @@ TEST(vtkCatadioptricRayTracer, ChangedMeshesBuildTheSceneAgain)
   points->Modified();
   tracer->Update();
   ASSERT_EQ(errors->Count, 0) << errors->Last;
-  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 2);
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1); // the same triangles: refitted
+  EXPECT_EQ(tracer->GetNumberOfSceneRefits(), 1);
   EXPECT_EQ(tracer->GetNumberOfRayBackProjections(), 1);
   EXPECT_GT(Differences(tracer->GetOutput(), first), 100);
   EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
@@ -679,9 +682,27 @@ TEST(vtkCatadioptricRayTracer, ChangedMeshesBuildTheSceneAgain)
   ball->Modified();
   tracer->Update();
   ASSERT_EQ(errors->Count, 0) << errors->Last;
-  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 3);
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 1);
+  EXPECT_EQ(tracer->GetNumberOfSceneRefits(), 2);
   EXPECT_GT(Differences(tracer->GetOutput(), second), 100);
   EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
+
+  // Other cells (every other triangle left out): built again.
+  vtkNew<vtkCellArray> half;
+  vtkNew<vtkIdList> cell;
+  for (vtkIdType c = 0; c < ball->GetNumberOfPolys(); c += 2)
+  {
+    ball->GetPolys()->GetCellAtId(c, cell);
+    half->InsertNextCell(cell);
+  }
+  vtkSmartPointer<vtkCellArray> allCells = ball->GetPolys();
+  ball->SetPolys(half);
+  tracer->Update();
+  ASSERT_EQ(errors->Count, 0) << errors->Last;
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 2);
+  EXPECT_EQ(tracer->GetNumberOfSceneRefits(), 2);
+  EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball }, lighting)), 0);
+  ball->SetPolys(allCells);
 
   // A second mesh added.
   auto other = Ball(-0.05, -0.30, 0.95, 0.03);
@@ -689,11 +710,11 @@ TEST(vtkCatadioptricRayTracer, ChangedMeshesBuildTheSceneAgain)
   tracer->SetMeshLighting(1, lighting);
   tracer->Update();
   ASSERT_EQ(errors->Count, 0) << errors->Last;
-  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 4);
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 3); // the cells put back and a mesh added
   EXPECT_GT(tracer->GetNumberOfHits(), hits);
   EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { ball, other }, lighting)), 0);
   tracer->Update(); // nothing changed: nothing runs
-  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 4);
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 3);
 
   // The first taken away: the second alone, now mesh 0.
   tracer->RemoveAllMeshConnections();
@@ -701,6 +722,7 @@ TEST(vtkCatadioptricRayTracer, ChangedMeshesBuildTheSceneAgain)
   tracer->SetMeshLighting(0, lighting);
   tracer->Update();
   ASSERT_EQ(errors->Count, 0) << errors->Last;
-  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 5);
+  EXPECT_EQ(tracer->GetNumberOfSceneBuilds(), 4);
+  EXPECT_EQ(tracer->GetNumberOfSceneRefits(), 2);
   EXPECT_EQ(Differences(tracer->GetOutput(), FreshRender(camera, { other }, lighting)), 0);
 }
