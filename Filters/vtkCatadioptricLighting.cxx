@@ -301,17 +301,46 @@ struct vtkCatadioptricLighting::Internals
     {
       return this->PointBase;
     }
-    vtkNew<vtkIdList> ids;
-    this->PointBase = catar::AverageAtPoints<float>(
-      static_cast<std::size_t>(nPts), static_cast<std::size_t>(polys->GetNumberOfCells()), 4,
-      [&](std::size_t c, auto&& visit) {
-        polys->GetCellAtId(static_cast<vtkIdType>(c), ids);
-        for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    // catar::AverageAtPoints, its sums in the same order (cell by cell), so the same floats: the
+    // cells' colours read on the threads, summed at their points in one pass over the raw
+    // connectivity, and divided on the threads.
+    const vtkIdType nPolys = polys->GetNumberOfCells();
+    std::vector<float> cellColors(4 * static_cast<std::size_t>(nPolys));
+    vtkCatadioptricParallel::For(0, nPolys, kPointGrain, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType c = b; c < e; ++c)
+      {
+        base.Get(0, first + c, &cellColors[4 * static_cast<std::size_t>(c)]);
+      }
+    });
+    std::vector<float>& sums = this->PointBase;
+    sums.assign(4 * static_cast<std::size_t>(nPts), 0.0f);
+    std::vector<int> count(static_cast<std::size_t>(nPts), 0);
+    vtkNew<vtkIdList> scratch;
+    for (vtkIdType c = 0; c < nPolys; ++c)
+    {
+      vtkIdType n = 0;
+      const vtkIdType* pts = nullptr;
+      polys->GetCellAtId(c, n, pts, scratch); // no copy when the ids are stored as vtkIdType
+      const float* v = &cellColors[4 * static_cast<std::size_t>(c)];
+      for (vtkIdType k = 0; k < n; ++k)
+      {
+        float* sum = &sums[4 * static_cast<std::size_t>(pts[k])];
+        for (int j = 0; j < 4; ++j)
         {
-          visit(static_cast<std::size_t>(ids->GetId(k)));
+          sum[j] += v[j];
         }
-      },
-      [&](std::size_t c, float* v) { base.Get(0, first + static_cast<vtkIdType>(c), v); });
+        ++count[static_cast<std::size_t>(pts[k])];
+      }
+    }
+    vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType b, vtkIdType e) {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        for (int j = 0; j < 4; ++j)
+        {
+          sums[4 * static_cast<std::size_t>(i) + j] /= std::max(1, count[i]);
+        }
+      }
+    });
     this->PointBaseColors = colors;
     this->PointBasePolys = polys;
     this->PointBaseKey = key;
