@@ -19,7 +19,10 @@
 // spotlight) on the bunny (or the sphere of the same size), frame by frame interleaved with the
 // fast path's frame in the same process: with only the light moving, with only the camera's pose
 // moving a little, with the mesh's points moving (the ray scene refitted) and with its cells
-// marked modified (the ray scene built again) every frame.
+// marked modified (the ray scene built again) every frame; both renderers with three moving
+// spotlights and shadows; then both, with one spotlight and with three and shadows, on a large
+// object (a sphere around the rig that fills the mirror's whole image, a third of the frame's
+// pixels), where the reference's cost (per pixel) meets the fast path's (per triangle).
 #include "BenchmarkScene.h"
 #include "FramePipeline.h"
 
@@ -30,11 +33,13 @@
 #include "vtkMatrix4x4.h"
 #include "vtkPLYReader.h"
 #include "vtkPoints.h"
+#include "vtkReverseSense.h"
 #include "vtkSMPTools.h"
 
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <utility>
 
 namespace
 {
@@ -116,24 +121,143 @@ bool WriteCsv(const std::string& file, const std::vector<Result>& results)
   return true;
 }
 
+// One row of a table measured frame by frame in turn: its label, the row it is compared with
+// (the fast path with the same lighting), and what renders frame f (returns the stages' times in
+// milliseconds; the reference's whole frame as its last stage).
+struct Timed
+{
+  std::string label;
+  int baseline;
+  std::function<StageTimes(int)> frame;
+  std::vector<double> times;
+  std::array<std::vector<double>, StageTimes::N> stages;
+};
+
+void AddRow(std::vector<Timed>& rows, const std::string& label, int baseline,
+  std::function<StageTimes(int)> frame)
+{
+  rows.emplace_back();
+  rows.back().label = label;
+  rows.back().baseline = baseline;
+  rows.back().frame = std::move(frame);
+}
+
+// Renders every row's frame f in turn, f = 0 (warm-up, not kept) to `frames`, stopping after
+// `maxSeconds` (at least 5 frames); prints the medians and appends them to `results`.
+void RunInTurn(std::vector<Timed>& rows, const std::string& name, vtkIdType triangles, int frames,
+  double maxSeconds, std::vector<Result>& results)
+{
+  const auto begin = Clock::now();
+  for (int f = 0; f <= frames; ++f)
+  {
+    for (Timed& row : rows)
+    {
+      const StageTimes t = row.frame(f);
+      if (f > 0)
+      {
+        row.times.push_back(t.Total());
+        for (int k = 0; k < StageTimes::N; ++k)
+        {
+          row.stages[k].push_back(t.ms[k]);
+        }
+      }
+    }
+    if (f >= 5 && Ms(begin, Clock::now()) > 1e3 * maxSeconds)
+    {
+      break;
+    }
+  }
+  std::printf("| object | renderer | triangles | frames | frame | fps | x fast path | "
+              "projection | lighting | sort | composite |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Timed& row : rows)
+  {
+    Result r{ name, row.label, triangles, {}, Median(row.times) };
+    for (int k = 0; k < StageTimes::N; ++k)
+    {
+      r.stages.ms[k] = Median(row.stages[k]);
+    }
+    r.frames = static_cast<int>(row.times.size());
+    const double fast = Median(rows[row.baseline].times);
+    std::printf("| %s | %s | %lld | %d | %.2f | %.1f | %.2f |", r.object.c_str(), r.variant.c_str(),
+      static_cast<long long>(r.triangles), r.frames, r.frameMs,
+      r.frameMs > 0 ? 1e3 / r.frameMs : 0.0, fast > 0 ? r.frameMs / fast : 0.0);
+    if (r.stages.ms[0] > 0 || r.stages.ms[1] > 0 || r.stages.ms[2] > 0)
+    {
+      std::printf(" %.2f | %.2f | %.2f | %.2f |\n", r.stages.ms[0], r.stages.ms[1], r.stages.ms[2],
+        r.stages.ms[3]);
+    }
+    else
+    {
+      std::printf(" | | | |\n");
+    }
+    results.push_back(r);
+  }
+  std::fflush(stdout);
+}
+
+// Times one Update of `tracer` (as the last stage).
+StageTimes TimeUpdate(vtkCatadioptricRayTracer* tracer)
+{
+  const auto t0 = Clock::now();
+  tracer->Update();
+  StageTimes t;
+  t.ms[3] = Ms(t0, Clock::now());
+  return t;
+}
+
+vtkSmartPointer<vtkCatadioptricRayTracer> MakeTracer(vtkCatadioptricCamera* camera,
+  vtkImageData* frame, vtkPolyData* mesh, vtkCatadioptricLighting* lighting)
+{
+  auto tracer = vtkSmartPointer<vtkCatadioptricRayTracer>::New();
+  tracer->SetCamera(camera);
+  tracer->SetFrameData(frame);
+  tracer->AddMeshData(mesh);
+  tracer->SetMeshLighting(0, lighting);
+  return tracer;
+}
+
+// A sphere of 69,696 triangles, 0.8 m in radius, around the camera and the mirror (centred 10 cm
+// behind the mirror's centre, towards the camera), its triangles turned to face inwards: an
+// object that fills every pixel of the mirror's image (a third of the frame). The spotlights
+// circle inside it.
+vtkSmartPointer<vtkPolyData> SurroundingSphere()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(0.8);
+  sphere->SetCenter(0.0, -0.1, 1.0);
+  sphere->SetThetaResolution(264);
+  sphere->SetPhiResolution(134);
+  vtkNew<vtkReverseSense> inwards;
+  inwards->SetInputConnection(sphere->GetOutputPort());
+  inwards->ReverseCellsOn();
+  inwards->ReverseNormalsOn();
+  inwards->Update();
+  return inwards->GetOutput();
+}
+
 // The exact reference renderer against the fast path, frame by frame in turn (the machine's speed
 // drifts): the fast path's full frame (moving spotlight); the reference with only the spotlight
 // moving; with only the camera's pose moving (a fraction of a millimetre and of a degree); with
 // the mesh's points moving (the ray scene refitted every frame); with its cells marked modified
-// (the ray scene built again every frame). Median times.
-int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptricCamera* camera,
-  vtkImageData* frame, int frames, double maxSeconds, const std::string& csv)
+// (the ray scene built again every frame); then the fast path and the reference with three moving
+// spotlights and shadows. Median times.
+void ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptricCamera* camera,
+  vtkImageData* frame, int frames, double maxSeconds, std::vector<Result>& results)
 {
   FrameOptions options;
   options.solver = vtkCatadioptricProjection::ITERATIVE;
   FramePipeline pipeline(target, camera, frame, options);
+  FrameOptions shadowOptions = options;
+  shadowOptions.lights = 3;
+  shadowOptions.shadows = true;
+  FramePipeline shadowPipeline(target, camera, frame, shadowOptions);
 
-  // Light moving: lit by the pipeline's own (moving) spotlight.
-  vtkNew<vtkCatadioptricRayTracer> lightTracer;
-  lightTracer->SetCamera(camera);
-  lightTracer->SetFrameData(frame);
-  lightTracer->AddMeshData(target);
-  lightTracer->SetMeshLighting(0, pipeline.GetLighting());
+  // Light moving: lit by the pipeline's own (moving) spotlight(s).
+  vtkSmartPointer<vtkCatadioptricRayTracer> lightTracer =
+    MakeTracer(camera, frame, target, pipeline.GetLighting());
+  vtkSmartPointer<vtkCatadioptricRayTracer> shadowTracer =
+    MakeTracer(camera, frame, target, shadowPipeline.GetLighting());
 
   // Pose moving: a camera of its own and a still spotlight.
   vtkNew<vtkCatadioptricCamera> movingCamera;
@@ -145,29 +269,20 @@ int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptric
   stillLight->SetSpecular(0.3);
   stillLight->SetDiffuseColor(0.9, 0.85, 0.75);
   stillLight->AddSpotLight(0, 0, 1.3, 0.0, -0.25, 0.9, 40, 1, 0.9, 0.8);
-  vtkNew<vtkCatadioptricRayTracer> poseTracer;
-  poseTracer->SetCamera(movingCamera);
-  poseTracer->SetFrameData(frame);
-  poseTracer->AddMeshData(target);
-  poseTracer->SetMeshLighting(0, stillLight);
+  vtkSmartPointer<vtkCatadioptricRayTracer> poseTracer =
+    MakeTracer(movingCamera, frame, target, stillLight);
 
   // Mesh moved: a copy of the mesh whose points move (by up to 1 mm) every frame, marked modified
   // (the ray scene refitted); mesh rebuilt: a copy whose cells change every frame, all of them and
   // all but the last in turn (the ray scene built again).
   vtkNew<vtkPolyData> copy;
   copy->DeepCopy(target);
-  vtkNew<vtkCatadioptricRayTracer> meshTracer;
-  meshTracer->SetCamera(camera);
-  meshTracer->SetFrameData(frame);
-  meshTracer->AddMeshData(copy);
-  meshTracer->SetMeshLighting(0, stillLight);
+  vtkSmartPointer<vtkCatadioptricRayTracer> meshTracer =
+    MakeTracer(camera, frame, copy, stillLight);
   vtkNew<vtkPolyData> copy2;
   copy2->DeepCopy(target);
-  vtkNew<vtkCatadioptricRayTracer> cellsTracer;
-  cellsTracer->SetCamera(camera);
-  cellsTracer->SetFrameData(frame);
-  cellsTracer->AddMeshData(copy2);
-  cellsTracer->SetMeshLighting(0, stillLight);
+  vtkSmartPointer<vtkCatadioptricRayTracer> cellsTracer =
+    MakeTracer(camera, frame, copy2, stillLight);
   vtkSmartPointer<vtkCellArray> allCells = copy2->GetPolys();
   vtkNew<vtkCellArray> fewerCells;
   fewerCells->DeepCopy(allCells);
@@ -200,63 +315,73 @@ int ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptric
     movingCamera->SetWorldToCameraElements(m);
   };
 
-  constexpr int kRows = 5;
-  const char* labels[kRows] = { "fast path (1 spot, gouraud, painter, iterative)",
-    "reference, light moving", "reference, camera pose moving",
-    "reference, mesh points moving (scene refitted)",
-    "reference, mesh cells modified (scene built)" };
-  std::vector<double> times[kRows];
-  const auto begin = Clock::now();
-  for (int f = 0; f <= frames; ++f) // frame 0: warm-up (rays and ray scene made)
-  {
-    double ms[kRows];
-    ms[0] = pipeline.Frame(f).Total();
-    auto t0 = Clock::now();
-    lightTracer->Update();
-    ms[1] = Ms(t0, Clock::now());
+  // Frame 0 is the warm-up: rays and ray scenes made.
+  std::vector<Timed> rows;
+  AddRow(rows, "fast path (1 spot, gouraud, painter, iterative)", 0,
+    [&](int f) { return pipeline.Frame(f); });
+  AddRow(rows, "reference, light moving", 0, [&](int) { return TimeUpdate(lightTracer); });
+  AddRow(rows, "reference, camera pose moving", 0, [&](int f) {
     movePose(f);
-    t0 = Clock::now();
-    poseTracer->Update();
-    ms[2] = Ms(t0, Clock::now());
+    return TimeUpdate(poseTracer);
+  });
+  AddRow(rows, "reference, mesh points moving (scene refitted)", 0, [&](int f) {
     movePoints(f);
-    t0 = Clock::now();
-    meshTracer->Update();
-    ms[3] = Ms(t0, Clock::now());
+    return TimeUpdate(meshTracer);
+  });
+  AddRow(rows, "reference, mesh cells modified (scene built)", 0, [&](int f) {
     copy2->SetPolys(f % 2 ? fewerCells.Get() : allCells.Get());
-    t0 = Clock::now();
-    cellsTracer->Update();
-    ms[4] = Ms(t0, Clock::now());
-    if (f > 0)
-    {
-      for (int k = 0; k < kRows; ++k)
-      {
-        times[k].push_back(ms[k]);
-      }
-    }
-    if (f >= 5 && Ms(begin, Clock::now()) > 1e3 * maxSeconds)
-    {
-      break;
-    }
-  }
-  std::printf("Exact reference renderer (1 ray per pixel, gouraud, 1 spotlight) against the fast "
-              "path on the %s, 1328x1048, frames in turn, median (ms):\n\n",
+    return TimeUpdate(cellsTracer);
+  });
+  AddRow(rows, "fast path (3 spots, shadows, gouraud, painter, iterative)", 5,
+    [&](int f) { return shadowPipeline.Frame(f); });
+  AddRow(rows, "reference, 3 spots with shadows, lights moving", 5,
+    [&](int) { return TimeUpdate(shadowTracer); });
+  std::printf("Exact reference renderer (1 ray per pixel, gouraud) against the fast path on the "
+              "%s, 1328x1048, frames in turn, median (ms; x fast path: against the fast path "
+              "with the same lights):\n\n",
     name.c_str());
-  std::printf("| object | renderer | triangles | frames | frame | fps | x fast path |\n"
-              "|---|---|---|---|---|---|---|\n");
-  std::vector<Result> results;
-  const double fast = Median(times[0]);
-  for (int k = 0; k < kRows; ++k)
-  {
-    Result r{ name, labels[k], target->GetNumberOfPolys(), {}, Median(times[k]) };
-    r.stages.ms = { 0, 0, 0, r.frameMs };
-    r.frames = static_cast<int>(times[k].size());
-    std::printf("| %s | %s | %lld | %d | %.2f | %.1f | %.2f |\n", r.object.c_str(),
-      r.variant.c_str(), static_cast<long long>(r.triangles), r.frames, r.frameMs,
-      r.frameMs > 0 ? 1e3 / r.frameMs : 0.0, fast > 0 ? r.frameMs / fast : 0.0);
-    results.push_back(r);
-  }
-  std::fflush(stdout);
-  return WriteCsv(csv, results) ? 0 : 1;
+  RunInTurn(rows, name, target->GetNumberOfPolys(), frames, maxSeconds, results);
+}
+
+// An object that fills a large part of the mirror (SurroundingSphere): the fast path and the
+// reference with one moving spotlight, and with three and shadows, frames in turn; the share of
+// the frame's pixels the object covers (the reference's hits, one ray per pixel).
+void LargeObjectTable(vtkCatadioptricCamera* camera, vtkImageData* frame, int frames,
+  double maxSeconds, std::vector<Result>& results)
+{
+  const std::string name = "surrounding sphere";
+  vtkSmartPointer<vtkPolyData> mesh = SurroundingSphere();
+  FrameOptions options;
+  options.solver = vtkCatadioptricProjection::ITERATIVE;
+  FramePipeline pipeline(mesh, camera, frame, options);
+  FrameOptions shadowOptions = options;
+  shadowOptions.lights = 3;
+  shadowOptions.shadows = true;
+  FramePipeline shadowPipeline(mesh, camera, frame, shadowOptions);
+  vtkSmartPointer<vtkCatadioptricRayTracer> tracer =
+    MakeTracer(camera, frame, mesh, pipeline.GetLighting());
+  vtkSmartPointer<vtkCatadioptricRayTracer> shadowTracer =
+    MakeTracer(camera, frame, mesh, shadowPipeline.GetLighting());
+  std::vector<Timed> rows;
+  AddRow(rows, "fast path (1 spot, gouraud, painter, iterative)", 0,
+    [&](int f) { return pipeline.Frame(f); });
+  AddRow(rows, "reference, light moving", 0, [&](int) { return TimeUpdate(tracer); });
+  AddRow(rows, "fast path (3 spots, shadows, gouraud, painter, iterative)", 2,
+    [&](int f) { return shadowPipeline.Frame(f); });
+  AddRow(rows, "reference, 3 spots with shadows, lights moving", 2,
+    [&](int) { return TimeUpdate(shadowTracer); });
+  tracer->Update();
+  int dims[3];
+  frame->GetDimensions(dims);
+  const double pixels = static_cast<double>(dims[0]) * dims[1];
+  std::printf("\nA large object: a sphere of %lld triangles, 0.8 m in radius, around the camera "
+              "and the mirror, seen inside; it covers %lld of the frame's %.0f pixels (%.1f %%; "
+              "the mirror's whole image is about a third of the frame). Frames in turn, median "
+              "(ms):\n\n",
+    static_cast<long long>(mesh->GetNumberOfPolys()),
+    static_cast<long long>(tracer->GetNumberOfHits()), pixels,
+    100.0 * tracer->GetNumberOfHits() / pixels);
+  RunInTurn(rows, name, mesh->GetNumberOfPolys(), frames, maxSeconds, results);
 }
 
 void PrintRow(const Result& r)
@@ -348,8 +473,11 @@ int main(int argc, char* argv[])
   {
     std::string name;
     vtkSmartPointer<vtkPolyData> target = BunnyOrSphere(name);
-    return ReferenceTable(
-      target, name, camera, frame, quick ? 3 : std::min(frames, 100), maxSeconds, csv);
+    const int referenceFrames = quick ? 3 : std::min(frames, 100);
+    std::vector<Result> results;
+    ReferenceTable(target, name, camera, frame, referenceFrames, maxSeconds, results);
+    LargeObjectTable(camera, frame, referenceFrames, maxSeconds, results);
+    return WriteCsv(csv, results) ? 0 : 1;
   }
 
   // The objects, made only when they are measured (remeshing the largest box takes seconds).
