@@ -35,6 +35,7 @@ NOT_RUN = {
     "builds the project, run by CI",
     "changes the source tree",
     "output shown, not a command",
+    "compares two builds of the reader's (BEFORE and AFTER)",
 }
 # Reasons a block runs only where what it needs is there.
 SHARED_DATA = "needs ../shared data"
