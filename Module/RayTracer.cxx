@@ -200,13 +200,9 @@ bool RayTracer::SetScene(const std::vector<std::shared_ptr<const TraceMesh>>& me
     }
     std::vector<std::vector<float>> points(meshes.size());
     std::vector<RayScene::MeshView> views(meshes.size());
-    for (std::size_t m = 0; m < meshes.size(); ++m)
-    {
+    // Mesh m's points in single precision, and the view of them the ray scene builds from.
+    const auto convert = [&](std::size_t m) {
       const TraceMesh& mesh = *meshes[m];
-      if (refit && known[m])
-      {
-        continue;
-      }
       points[m].resize(3 * mesh.points.size());
       for (std::size_t i = 0; i < mesh.points.size(); ++i)
       {
@@ -219,6 +215,13 @@ bool RayTracer::SetScene(const std::vector<std::shared_ptr<const TraceMesh>>& me
       views[m].pointCount = mesh.points.size();
       views[m].triangles = mesh.triangles.empty() ? nullptr : mesh.triangles.front().data();
       views[m].triangleCount = mesh.triangles.size();
+    };
+    for (std::size_t m = 0; m < meshes.size(); ++m)
+    {
+      if (!(refit && known[m]))
+      {
+        convert(m);
+      }
     }
     if (refit)
     {
@@ -238,20 +241,7 @@ bool RayTracer::SetScene(const std::vector<std::shared_ptr<const TraceMesh>>& me
       {
         if (views[m].points == nullptr && !meshes[m]->points.empty())
         {
-          // Skipped above for a refit that failed: converted now.
-          const TraceMesh& mesh = *meshes[m];
-          points[m].resize(3 * mesh.points.size());
-          for (std::size_t i = 0; i < mesh.points.size(); ++i)
-          {
-            for (int k = 0; k < 3; ++k)
-            {
-              points[m][3 * i + k] = static_cast<float>(mesh.points[i][k]);
-            }
-          }
-          views[m].points = points[m].data();
-          views[m].pointCount = mesh.points.size();
-          views[m].triangles = mesh.triangles.empty() ? nullptr : mesh.triangles.front().data();
-          views[m].triangleCount = mesh.triangles.size();
+          convert(m); // skipped above for a refit that failed
         }
       }
       this->Scene.SetBuildThreads(buildThreads);
