@@ -1,6 +1,7 @@
 #include "vtkCatadioptricProjection.h"
 
 #include "CameraModel.h"
+#include "ImageTessellation.h"
 #include "Polygons.h"
 #include "Projector.h"
 
@@ -20,11 +21,13 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <Eigen/Geometry> // cross products
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -64,12 +67,18 @@ struct CellWorker
   bool CullBackFaces;
   catar::Mat3 CameraToWorldRotation; // R^T
   catar::Vec3 CameraCentre;          // -R^T T: the camera centre in world coordinates
+  // Not null: set when a triangle needs the per-frame tessellation's closer look
+  // (catar::NeedsFateCheck with these options), the quick pass of
+  // vtkCatadioptricTessellatedMesh::Refine done here, on the vertices this pass reads anyway.
+  std::atomic<bool>* NeedsFateCheck = nullptr;
+  catar::TessellationOptions Tessellation;
 
   // Polygon c has the points conn[off[c]], ..., conn[off[c + 1] - 1].
   template<typename IdT>
   void operator()(const IdT* off, const IdT* conn, vtkIdType begin, vtkIdType end) const
   {
     Batch batch(this->Projector->GetBatchSize());
+    bool needsFateCheck = false;
     for (vtkIdType c = begin; c < end; ++c)
     {
       if (c + kPrefetchCells < end)
@@ -116,6 +125,12 @@ struct CellWorker
         ymin = std::min(ymin, v.pixel[1]);
         ymax = std::max(ymax, v.pixel[1]);
       }
+      if (this->NeedsFateCheck && n == 3 && !needsFateCheck)
+      {
+        const double* const px[3] = { this->Vertices[ids[0]].pixel, this->Vertices[ids[1]].pixel,
+          this->Vertices[ids[2]].pixel };
+        needsFateCheck = catar::NeedsFateCheck(all, px, this->Tessellation);
+      }
       if (!all)
       {
         continue;
@@ -145,6 +160,10 @@ struct CellWorker
       }
     }
     this->Finish(batch);
+    if (needsFateCheck)
+    {
+      this->NeedsFateCheck->store(true, std::memory_order_relaxed);
+    }
   }
 
   // Cells whose centroid is still to be projected.
@@ -216,6 +235,54 @@ struct CellDispatch
       [&](vtkIdType b, vtkIdType e) { worker(off, conn, b, e); });
   }
 };
+
+// A mesh's cell arrays: CentroidDepth, CentroidMirrorPoint and Visible.
+struct CellArrays
+{
+  vtkSmartPointer<vtkDoubleArray> Depth;
+  vtkSmartPointer<vtkDoubleArray> Mirror;
+  vtkSmartPointer<vtkUnsignedCharArray> Visible;
+};
+
+// Projects the centroids of `mesh`'s polygons (whose points' records are `vertices`) and decides
+// their visibility with `worker`'s settings; zeros for its other cells.
+CellArrays ProjectCells(vtkPolyData* mesh, CellWorker& worker, const VertexRecord* vertices)
+{
+  const vtkIdType nCells = mesh->GetNumberOfCells();
+  CellArrays out;
+  out.Depth = vtkSmartPointer<vtkDoubleArray>::New();
+  out.Depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
+  out.Depth->SetNumberOfTuples(nCells);
+  out.Mirror = vtkSmartPointer<vtkDoubleArray>::New();
+  out.Mirror->SetName("CentroidMirrorPoint");
+  out.Mirror->SetNumberOfComponents(3);
+  out.Mirror->SetNumberOfTuples(nCells);
+  out.Visible = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  out.Visible->SetName(vtkCatadioptricArrayNames::Visible);
+  out.Visible->SetNumberOfTuples(nCells);
+  // Zeros for vertices, lines and strips; the polygons' values are all written below.
+  const vtkIdType firstPoly = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+  const vtkIdType endPoly = firstPoly + mesh->GetNumberOfPolys();
+  const bool polysWritten = mesh->GetNumberOfPolys() > 0 && mesh->GetNumberOfPoints() > 0;
+  for (const auto& range : { std::make_pair(vtkIdType(0), polysWritten ? firstPoly : nCells),
+         std::make_pair(polysWritten ? endPoly : nCells, nCells) })
+  {
+    std::fill(out.Depth->GetPointer(range.first), out.Depth->GetPointer(range.second), 0.0);
+    std::fill(
+      out.Mirror->GetPointer(3 * range.first), out.Mirror->GetPointer(3 * range.second), 0.0);
+    std::fill(out.Visible->GetPointer(range.first), out.Visible->GetPointer(range.second), 0);
+  }
+  if (polysWritten)
+  {
+    worker.Vertices = vertices;
+    worker.Depth = out.Depth->GetPointer(0);
+    worker.CentroidMirror = out.Mirror->GetPointer(0);
+    worker.Visible = out.Visible->GetPointer(0);
+    worker.CellOffset = firstPoly;
+    mesh->GetPolys()->Visit(CellDispatch{}, worker);
+  }
+  return out;
+}
 } // namespace
 
 vtkCatadioptricProjection::vtkCatadioptricProjection() = default;
@@ -332,18 +399,47 @@ int vtkCatadioptricProjection::RequestData(
       catar::ProjectRun(projector, solver, begin, end, points, store);
     });
   }
-  // Per-frame tessellation: triangles across the visibility boundary (and, adaptive, those that
-  // bend too much) replaced by their pieces; the new points' projections appended.
-  this->NumberOfSplitTriangles = 0;
-  if (nPts > 0 && input->GetNumberOfPolys() > 0)
+  this->UpdateProgress(0.5);
+  if (input->GetNumberOfStrips() > 0)
   {
-    catar::TessellationOptions options;
-    options.boundaryTolerance = this->BoundaryTolerance;
-    options.bendTolerance = this->AdaptiveTolerance;
-    options.solver = solver;
+    vtkWarningMacro("Triangle strips are not drawn; run vtkTriangleFilter first.");
+  }
+  CellWorker worker;
+  worker.Projector = &projector;
+  worker.Width = camera->GetImageWidth();
+  worker.Height = camera->GetImageHeight();
+  worker.CullBackFaces = this->BackFaceCulling;
+  const catar::PoseFrames& pose = projector.GetPose();
+  worker.CameraToWorldRotation = pose.rotationT;
+  worker.CameraCentre = pose.centre;
+  worker.Tessellation.boundaryTolerance = this->BoundaryTolerance;
+  worker.Tessellation.bendTolerance = this->AdaptiveTolerance;
+  worker.Tessellation.solver = solver;
+
+  // Per-frame tessellation: triangles across the visibility boundary (and, adaptive, those that
+  // bend too much) replaced by their pieces; the new points' projections appended. Without a
+  // bend tolerance most frames split nothing: the cells are projected first, and that pass also
+  // finds whether any triangle needs a closer look (catar::NeedsFateCheck); only then is the mesh
+  // refined, and its cells projected again when a triangle was split. With one, every triangle
+  // needs it: the mesh is refined first.
+  this->NumberOfSplitTriangles = 0;
+  const bool refineFirst = worker.Tessellation.bendTolerance > 0.0;
+  const bool polys = nPts > 0 && input->GetNumberOfPolys() > 0;
+  std::atomic<bool> needsFateCheck(polys);
+  CellArrays cells;
+  if (!refineFirst)
+  {
+    worker.NeedsFateCheck = &needsFateCheck;
+    needsFateCheck = false;
+    cells = ProjectCells(input, worker, records.get());
+    worker.NeedsFateCheck = nullptr;
+  }
+  if (polys && needsFateCheck)
+  {
     catar::Tessellation added;
-    this->NumberOfSplitTriangles = vtkCatadioptricTessellatedMesh::Refine(input, projector, options,
-      status->GetPointer(0), pixels->GetPointer(0), mirror->GetPointer(0), added, output);
+    this->NumberOfSplitTriangles =
+      vtkCatadioptricTessellatedMesh::Refine(input, projector, worker.Tessellation,
+        status->GetPointer(0), pixels->GetPointer(0), mirror->GetPointer(0), added, output);
     if (this->NumberOfSplitTriangles > 0)
     {
       camera->WriteToFieldData(output->GetFieldData());
@@ -379,63 +475,20 @@ int vtkCatadioptricProjection::RequestData(
       records.swap(grown);
     }
   }
-  vtkPolyData* mesh = this->NumberOfSplitTriangles > 0 ? output : input;
+  if (refineFirst || this->NumberOfSplitTriangles > 0)
+  {
+    cells = ProjectCells(this->NumberOfSplitTriangles > 0 ? output : input, worker, records.get());
+  }
   vtkPointData* pd = output->GetPointData();
   pd->AddArray(pixels);
   pd->AddArray(mirror);
   pd->AddArray(path);
   pd->AddArray(status);
   pd->AddArray(pvis);
-  this->UpdateProgress(0.5);
-
-  const vtkIdType nCells = mesh->GetNumberOfCells();
-  vtkNew<vtkDoubleArray> depth;
-  depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
-  depth->SetNumberOfTuples(nCells);
-  vtkNew<vtkDoubleArray> centroidMirror;
-  centroidMirror->SetName("CentroidMirrorPoint");
-  centroidMirror->SetNumberOfComponents(3);
-  centroidMirror->SetNumberOfTuples(nCells);
-  vtkNew<vtkUnsignedCharArray> cvis;
-  cvis->SetName(vtkCatadioptricArrayNames::Visible);
-  cvis->SetNumberOfTuples(nCells);
-  // Zeros for vertices, lines and strips; the polygons' values are all written below.
-  const vtkIdType firstPoly = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
-  const vtkIdType endPoly = firstPoly + mesh->GetNumberOfPolys();
-  const bool polysWritten = mesh->GetNumberOfPolys() > 0 && nPts > 0;
-  for (const auto& range : { std::make_pair(vtkIdType(0), polysWritten ? firstPoly : nCells),
-         std::make_pair(polysWritten ? endPoly : nCells, nCells) })
-  {
-    std::fill(depth->GetPointer(range.first), depth->GetPointer(range.second), 0.0);
-    std::fill(centroidMirror->GetPointer(3 * range.first),
-      centroidMirror->GetPointer(3 * range.second), 0.0);
-    std::fill(cvis->GetPointer(range.first), cvis->GetPointer(range.second), 0);
-  }
-  if (input->GetNumberOfStrips() > 0)
-  {
-    vtkWarningMacro("Triangle strips are not drawn; run vtkTriangleFilter first.");
-  }
-  if (polysWritten)
-  {
-    CellWorker worker;
-    worker.Projector = &projector;
-    worker.Vertices = records.get();
-    worker.Depth = depth->GetPointer(0);
-    worker.CentroidMirror = centroidMirror->GetPointer(0);
-    worker.Visible = cvis->GetPointer(0);
-    worker.CellOffset = firstPoly;
-    worker.Width = camera->GetImageWidth();
-    worker.Height = camera->GetImageHeight();
-    worker.CullBackFaces = this->BackFaceCulling;
-    const catar::PoseFrames& pose = projector.GetPose();
-    worker.CameraToWorldRotation = pose.rotationT;
-    worker.CameraCentre = pose.centre;
-    mesh->GetPolys()->Visit(CellDispatch{}, worker);
-  }
   vtkCellData* cd = output->GetCellData();
-  cd->AddArray(depth);
-  cd->AddArray(centroidMirror);
-  cd->AddArray(cvis);
+  cd->AddArray(cells.Depth);
+  cd->AddArray(cells.Mirror);
+  cd->AddArray(cells.Visible);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -73,8 +73,7 @@ EdgeKey Key(vtkPoints* points, vtkIdType a, vtkIdType b, bool& forward)
 }
 
 // The triangles to split this frame, in cell order: a quick pass on the corners' statuses and
-// edge lengths (seen at the corners, no bend tolerance, no long edge: kept), then each
-// candidate's fate.
+// edge lengths (catar::NeedsFateCheck), then the fate of each triangle that needs it.
 std::vector<vtkIdType> ChooseTriangles(vtkPolyData* input, const catar::Projector& projector,
   const catar::TessellationOptions& options, const unsigned char* status, const double* pixels,
   const double* mirrorPoints)
@@ -83,9 +82,6 @@ std::vector<vtkIdType> ChooseTriangles(vtkPolyData* input, const catar::Projecto
   const vtkIdType nPolys = polys->GetNumberOfCells();
   vtkPoints* points = input->GetPoints();
   std::vector<unsigned char> split(static_cast<std::size_t>(nPolys), 0);
-  const double check2 = options.interiorCheck * options.interiorCheck;
-  const bool measureAll = options.bendTolerance > 0.0;
-  const bool checkLong = options.boundaryTolerance > 0.0;
   polys->Visit([&](auto& state) {
     const auto* offsets = state.GetOffsets()->GetPointer(0);
     const auto* connectivity = state.GetConnectivity()->GetPointer(0);
@@ -106,21 +102,10 @@ std::vector<vtkIdType> ChooseTriangles(vtkPolyData* input, const catar::Projecto
           catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) &&
           catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) &&
           catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]]));
-        // Seen at its corners, no bend tolerance, and no edge long enough to check its middle.
-        if (allSeen && !measureAll)
+        const double* const px[3] = { pixels + 2 * v[0], pixels + 2 * v[1], pixels + 2 * v[2] };
+        if (!catar::NeedsFateCheck(allSeen, px, options))
         {
-          bool longEdge = false;
-          for (int e = 0; e < 3; ++e)
-          {
-            const double* p = pixels + 2 * v[e];
-            const double* q = pixels + 2 * v[(e + 1) % 3];
-            const double dx = p[0] - q[0], dy = p[1] - q[1];
-            longEdge = longEdge || dx * dx + dy * dy > check2;
-          }
-          if (!checkLong || !longEdge)
-          {
-            continue;
-          }
+          continue;
         }
         cells.push_back(c);
         world.emplace_back();

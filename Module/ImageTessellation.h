@@ -90,6 +90,33 @@ enum class TriangleFate : std::uint8_t
   Tessellate ///< split (crosses the boundary, or bends too much)
 };
 
+/// Whether a triangle needs TriangleFateOf to decide its fate: any triangle with a corner without
+/// a reflection (`allSeen` false), every triangle when there is a bend tolerance, and, with a
+/// boundary tolerance, one with an edge longer than interiorCheck pixels (its corners' pixels
+/// `px`, two numbers each, in the triangle's order). Every other triangle is kept as it is.
+inline bool NeedsFateCheck(
+  bool allSeen, const double* const px[3], const TessellationOptions& options)
+{
+  if (!allSeen || options.bendTolerance > 0.0)
+  {
+    return true;
+  }
+  if (!(options.boundaryTolerance > 0.0))
+  {
+    return false;
+  }
+  const double check2 = options.interiorCheck * options.interiorCheck;
+  bool longEdge = false;
+  for (int e = 0; e < 3; ++e)
+  {
+    const double* p = px[e];
+    const double* q = px[(e + 1) % 3];
+    const double dx = p[0] - q[0], dy = p[1] - q[1];
+    longEdge = longEdge || dx * dx + dy * dy > check2;
+  }
+  return longEdge;
+}
+
 /// The fate of triangle (a, b, c) (world points, their projections: status, pixel and, for the
 /// edge midpoints' start, mirror point).
 TriangleFate TriangleFateOf(const Projector& projector, const std::array<Vec3, 3>& world,
