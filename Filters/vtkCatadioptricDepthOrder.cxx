@@ -41,28 +41,6 @@ bool ByKey(const Cell& a, const Cell& b)
 }
 } // namespace
 
-std::uint64_t vtkCatadioptricDepthOrder::FarToNearKey(double depth)
-{
-  if (depth == 0.0)
-  {
-    depth = 0.0;
-  }
-  std::uint64_t bits;
-  std::memcpy(&bits, &depth, sizeof bits);
-  const std::uint64_t ascending = (bits >> 63) ? ~bits : (bits | (std::uint64_t(1) << 63));
-  return ~ascending;
-}
-
-double vtkCatadioptricDepthOrder::DepthOfKey(std::uint64_t key)
-{
-  const std::uint64_t ascending = ~key;
-  const std::uint64_t bits =
-    (ascending >> 63) ? (ascending & ~(std::uint64_t(1) << 63)) : ~ascending;
-  double depth;
-  std::memcpy(&depth, &bits, sizeof depth);
-  return depth;
-}
-
 void vtkCatadioptricDepthOrder::Sort(vtkIdType n, const double* depth, const unsigned char* keep)
 {
   n = std::max<vtkIdType>(n, 0);

@@ -17,6 +17,7 @@
 #include "vtkType.h"
 
 #include <cstdint> // std::uint64_t
+#include <cstring> // std::memcpy
 #include <vector>  // std::vector
 
 class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricDepthOrder
@@ -31,10 +32,28 @@ public:
 
   /// A 64-bit key whose unsigned order is the order of decreasing depth (far to near): the IEEE
   /// bits made monotone (negative numbers reversed), then complemented. -0 is +0.
-  static std::uint64_t FarToNearKey(double depth);
+  static std::uint64_t FarToNearKey(double depth)
+  {
+    if (depth == 0.0)
+    {
+      depth = 0.0;
+    }
+    std::uint64_t bits;
+    std::memcpy(&bits, &depth, sizeof bits);
+    const std::uint64_t ascending = (bits >> 63) ? ~bits : (bits | (std::uint64_t(1) << 63));
+    return ~ascending;
+  }
 
   /// The depth a key was made from (-0 comes back as +0).
-  static double DepthOfKey(std::uint64_t key);
+  static double DepthOfKey(std::uint64_t key)
+  {
+    const std::uint64_t ascending = ~key;
+    const std::uint64_t bits =
+      (ascending >> 63) ? (ascending & ~(std::uint64_t(1) << 63)) : ~ascending;
+    double depth;
+    std::memcpy(&depth, &bits, sizeof depth);
+    return depth;
+  }
 
   /// Sorts the cells c in [0, n) with keep[c] != 0 (every cell when keep is null), depth[c]
   /// theirs, far to near, equal depths in cell order. GetCells() returns them.

@@ -44,7 +44,7 @@ constexpr vtkIdType kCopyGrain = 8192;
 using KeyedCell = vtkCatadioptricDepthOrder::Cell;
 
 // How many cells ahead the gather asks for what it will read.
-constexpr vtkIdType kPrefetchCells = 16;
+constexpr vtkIdType kPrefetchCells = 64;
 
 // One cell-data array with the standard memory layout, copied tuple by tuple as bytes.
 struct TupleGather
@@ -54,24 +54,43 @@ struct TupleGather
   std::size_t width; // bytes per tuple
 };
 
-inline void CopyTuple(const TupleGather& t, vtkIdType to, vtkIdType from)
+// The tuples of one standard-layout cell array in the sorted order: to[i] = from[first +
+// order[i].cell], for i in [b, e). The reads are random: the loop asks for the tuple a few cells
+// ahead. Tuples of the sizes the pipeline makes (1, 8 and 24 bytes) are copied by a loop of their
+// own, without a call per tuple.
+template<std::size_t Width>
+void GatherTuplesOf(
+  const TupleGather& t, const KeyedCell* order, vtkIdType first, vtkIdType b, vtkIdType e)
 {
-  unsigned char* d = t.to + to * t.width;
-  const unsigned char* s = t.from + from * t.width;
-  // Sizes the pipeline makes are copied inline, not by a call per tuple.
+  const std::size_t width = Width > 0 ? Width : t.width;
+  const unsigned char* const from = t.from + first * width;
+  unsigned char* const to = t.to;
+  for (vtkIdType i = b; i < e; ++i)
+  {
+    if (i + kPrefetchCells < e)
+    {
+      vtkCatadioptricParallel::Prefetch(from + order[i + kPrefetchCells].cell * width);
+    }
+    std::memcpy(to + i * width, from + order[i].cell * width, width);
+  }
+}
+
+void GatherTuples(
+  const TupleGather& t, const KeyedCell* order, vtkIdType first, vtkIdType b, vtkIdType e)
+{
   switch (t.width)
   {
     case 1:
-      *d = *s;
+      GatherTuplesOf<1>(t, order, first, b, e);
       break;
     case 8:
-      std::memcpy(d, s, 8);
+      GatherTuplesOf<8>(t, order, first, b, e);
       break;
     case 24:
-      std::memcpy(d, s, 24);
+      GatherTuplesOf<24>(t, order, first, b, e);
       break;
     default:
-      std::memcpy(d, s, t.width);
+      GatherTuplesOf<0>(t, order, first, b, e);
       break;
   }
 }
@@ -86,63 +105,72 @@ struct SortedExtras
 // The polygons in `order` (cell c is polygon c of the input, cell data index first + c), the
 // tuples of the standard-layout cell arrays and the extras, in one parallel pass (no serial pass
 // for the ids, no loop of its own for the depths). The reads go through the order,
-// so they are random: each task asks for the cells a few ahead. Connectivity is written in 32-bit
-// storage (OutT) when the ids fit: half the bytes to write here and to read in the compositor.
-// `triangles`: every input polygon has three points (offsets 3c, no offsets to read).
+// so they are random: each loop asks for what it reads a few cells ahead. Each task runs a loop
+// for the polygons and the extras, then one per cell array: short loops without calls, whose
+// random reads the processor overlaps. Connectivity is written in 32-bit storage (OutT) when the
+// ids fit: half the bytes to write here and to read in the compositor. `triangles`: every input
+// polygon has three points (offsets 3c, no offsets to read).
 template<typename InT, typename OutT>
 void GatherCells(const InT* off, const InT* conn, const std::vector<KeyedCell>& order,
   vtkIdType first, bool triangles, const std::vector<TupleGather>& tuples,
   const SortedExtras& extras, OutT* outOff, OutT* outConn)
 {
   const vtkIdType n = static_cast<vtkIdType>(order.size());
+  const KeyedCell* const cells = order.data();
   if (!triangles)
   {
     outOff[0] = 0;
     for (vtkIdType i = 0; i < n; ++i)
     {
-      const vtkIdType c = order[i].cell;
+      const vtkIdType c = cells[i].cell;
       outOff[i + 1] = outOff[i] + static_cast<OutT>(off[c + 1] - off[c]);
     }
   }
   vtkCatadioptricParallel::For(0, n, kCopyGrain, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType i = b; i < e; ++i)
+    if (extras.Depths)
     {
-      if (i + kPrefetchCells < e)
+      double* const depths = extras.Depths;
+      for (vtkIdType i = b; i < e; ++i)
       {
-        const vtkIdType ahead = order[i + kPrefetchCells].cell;
-        vtkCatadioptricParallel::Prefetch(conn + (triangles ? 3 * ahead : off[ahead]));
-        for (const TupleGather& t : tuples)
+        depths[i] = vtkCatadioptricDepthOrder::DepthOfKey(cells[i].key);
+      }
+    }
+    if (extras.OriginalIds)
+    {
+      vtkIdType* const ids = extras.OriginalIds;
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        ids[i] = first + cells[i].cell;
+      }
+    }
+    if (triangles)
+    {
+      for (vtkIdType i = b; i < e; ++i)
+      {
+        if (i + kPrefetchCells < e)
         {
-          vtkCatadioptricParallel::Prefetch(t.from + (first + ahead) * t.width);
+          vtkCatadioptricParallel::Prefetch(conn + 3 * cells[i + kPrefetchCells].cell);
         }
-      }
-      const vtkIdType c = order[i].cell;
-      if (extras.Depths)
-      {
-        extras.Depths[i] = vtkCatadioptricDepthOrder::DepthOfKey(order[i].key);
-      }
-      if (extras.OriginalIds)
-      {
-        extras.OriginalIds[i] = first + c;
-      }
-      if (triangles)
-      {
-        outOff[i] = static_cast<OutT>(3 * i);
-        const InT* from = conn + 3 * c;
+        const InT* from = conn + 3 * cells[i].cell;
         OutT* to = outConn + 3 * i;
+        outOff[i] = static_cast<OutT>(3 * i);
         to[0] = static_cast<OutT>(from[0]);
         to[1] = static_cast<OutT>(from[1]);
         to[2] = static_cast<OutT>(from[2]);
       }
-      else
+    }
+    else
+    {
+      for (vtkIdType i = b; i < e; ++i)
       {
+        const vtkIdType c = cells[i].cell;
         std::transform(conn + off[c], conn + off[c + 1], outConn + outOff[i],
           [](InT v) { return static_cast<OutT>(v); });
       }
-      for (const TupleGather& t : tuples)
-      {
-        CopyTuple(t, i, first + c);
-      }
+    }
+    for (const TupleGather& t : tuples)
+    {
+      GatherTuples(t, cells, first, b, e);
     }
   });
   if (triangles)
