@@ -756,66 +756,6 @@ void sampleTexture(const TextureView& texture, float u, float v, float rgba[4])
   }
 }
 
-PixelRect coveredPixelBounds(
-  const std::int32_t x[3], const std::int32_t y[3], const PixelRect& clip)
-{
-  // Most calls are for triangles about a pixel in size at random places: a mispredicted branch
-  // costs about as much as the whole test, so past the first test (no pixel centre in the
-  // bounding box: most triangles of dense meshes, so mostly predicted) the common path has no
-  // data-dependent branch (measured, bunny-like triangles: 23 -> 14 ns per call). Signed >> is
-  // an arithmetic shift (floor division by 2^k) with every supported compiler, and by definition
-  // since C++20.
-  constexpr int kBits = kRasterSubPixelBits;
-  const std::int64_t minX = Min3(x[0], x[1], x[2]), maxX = Max3(x[0], x[1], x[2]);
-  const std::int64_t minY = Min3(y[0], y[1], y[2]), maxY = Max3(y[0], y[1], y[2]);
-  const int xMin = static_cast<int>(std::max<std::int64_t>((minX + kOne - 1) >> kBits, clip.x0));
-  const int yMin = static_cast<int>(std::max<std::int64_t>((minY + kOne - 1) >> kBits, clip.y0));
-  const int xMax = static_cast<int>(std::min<std::int64_t>(maxX >> kBits, clip.x1 - 1LL));
-  const int yMax = static_cast<int>(std::min<std::int64_t>(maxY >> kBits, clip.y1 - 1LL));
-  if ((xMin > xMax) | (yMin > yMax))
-  {
-    return PixelRect{};
-  }
-  const std::int64_t ax = x[0], ay = y[0];
-  const std::int64_t area = (x[1] - ax) * (y[2] - ay) - (y[1] - ay) * (x[2] - ax);
-  if ((xMax - xMin > 1) | (yMax - yMin > 1))
-  {
-    return area == 0 ? PixelRect{} : PixelRect{ xMin, yMin, xMax + 1, yMax + 1 };
-  }
-  // At most 2 x 2 centres: the coverage rule (as EdgeSetup and Scan apply it, in the winding of
-  // Normalise) at the centres (xMin + i, yMin + j). The winding stays a branch: a mesh's
-  // triangles seen from the camera mostly share one, so it is predicted.
-  const bool flip = area < 0;
-  const std::int64_t bx = flip ? x[2] : x[1], by = flip ? y[2] : y[1];
-  const std::int64_t cx = flip ? x[1] : x[2], cy = flip ? y[1] : y[2];
-  const std::int64_t px = static_cast<std::int64_t>(xMin) * kOne;
-  const std::int64_t py = static_cast<std::int64_t>(yMin) * kOne;
-  const auto edge = [px, py](std::int64_t x0, std::int64_t y0, std::int64_t x1, std::int64_t y1,
-                      std::int64_t& w, std::int64_t& sx, std::int64_t& sy) {
-    const std::int64_t ex = x1 - x0, ey = y1 - y0;
-    const bool topLeft = (ey < 0) | ((ey == 0) & (ex > 0));
-    w = ex * (py - y0) - ey * (px - x0) - (topLeft ? 0 : 1);
-    sx = -ey * kOne;
-    sy = ex * kOne;
-  };
-  std::int64_t w0, sx0, sy0, w1, sx1, sy1, w2, sx2, sy2;
-  edge(bx, by, cx, cy, w0, sx0, sy0);
-  edge(cx, cy, ax, ay, w1, sx1, sy1);
-  edge(ax, ay, bx, by, w2, sx2, sy2);
-  const bool valid = area != 0; // a degenerate triangle covers nothing
-  const bool wide = xMax > xMin, tall = yMax > yMin;
-  const bool c00 = valid & ((w0 | w1 | w2) >= 0);
-  const bool c10 = valid & wide & (((w0 + sx0) | (w1 + sx1) | (w2 + sx2)) >= 0);
-  const bool c01 = valid & tall & (((w0 + sy0) | (w1 + sy1) | (w2 + sy2)) >= 0);
-  const bool c11 =
-    valid & wide & tall & (((w0 + sx0 + sy0) | (w1 + sx1 + sy1) | (w2 + sx2 + sy2)) >= 0);
-  const int row0 = c00 | c10, row1 = c01 | c11;
-  const int col0 = c00 | c01, col1 = c10 | c11;
-  const int any = row0 | row1; // all four 0 (empty) when nothing is covered
-  return PixelRect{ any * (xMin + 1 - col0), any * (yMin + 1 - row0), any * (xMin + 1 + col1),
-    any * (yMin + 1 + row1) };
-}
-
 RasterResult rasterizeSnappedTriangle(const ImageView& target, const SnappedTriangle& t,
   const PixelRect& clip, const DepthView* depth, const TextureView* texture, const IdView* ids,
   RasterId id)
