@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <unordered_map>
 #include <utility>
@@ -161,6 +162,64 @@ std::vector<catar::Tessellation> TessellateAlike(vtkPolyData* input,
     slot.emplace(chosen[k], k);
   }
   std::unordered_map<EdgeKey, std::vector<double>, EdgeKeyHash> edgeSplits; // canonical t
+  // The triangles a round may pass splits to (three points, and a seen corner or chosen now:
+  // those that become chosen later have a seen corner), in cell order, with their edges' hashes,
+  // found once: each round looks for the changed edges among them by hash first (a bit per hash
+  // value, most triangles missing at once), and compares the keys only on a hit.
+  std::vector<vtkIdType> eligible;
+  std::vector<std::array<std::size_t, 3>> edgeHashes;
+  {
+    std::vector<unsigned char> isEligible(static_cast<std::size_t>(nPolys), 0);
+    polys->Visit([&](auto& state) {
+      const auto* offsets = state.GetOffsets()->GetPointer(0);
+      const auto* connectivity = state.GetConnectivity()->GetPointer(0);
+      vtkCatadioptricParallel::For(0, nPolys, kGrain, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType c = begin; c < end; ++c)
+        {
+          if (offsets[c + 1] - offsets[c] != 3)
+          {
+            continue;
+          }
+          const auto* v = connectivity + offsets[c];
+          isEligible[c] =
+            catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) ||
+              catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) ||
+              catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]]))
+            ? 1
+            : 0;
+        }
+      });
+    });
+    for (const vtkIdType c : chosen)
+    {
+      isEligible[c] = polys->GetCellSize(c) == 3 ? 1 : isEligible[c];
+    }
+    for (vtkIdType c = 0; c < nPolys; ++c)
+    {
+      if (isEligible[c])
+      {
+        eligible.push_back(c);
+      }
+    }
+    edgeHashes.resize(eligible.size());
+    vtkCatadioptricParallel::For(
+      0, static_cast<vtkIdType>(eligible.size()), kGrain, [&](vtkIdType begin, vtkIdType end) {
+        vtkNew<vtkIdList> ids;
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          vtkIdType n = 0;
+          const vtkIdType* v = nullptr;
+          polys->GetCellAtId(eligible[i], n, v, ids);
+          for (int e = 0; e < 3; ++e)
+          {
+            bool forward = true;
+            edgeHashes[i][e] = EdgeKeyHash()(Key(points, v[e], v[(e + 1) % 3], forward));
+          }
+        }
+      });
+  }
+  constexpr std::size_t kHashBits = std::size_t(1) << 20;
+  std::vector<std::uint64_t> changedHashes(kHashBits / 64);
   std::vector<std::size_t> todo(chosen.size());
   std::iota(todo.begin(), todo.end(), std::size_t(0));
   for (int round = 0; !todo.empty() && round < kMaxRounds; ++round)
@@ -219,27 +278,35 @@ std::vector<catar::Tessellation> TessellateAlike(vtkPolyData* input,
     // forced splits.
     std::sort(changed.begin(), changed.end());
     changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-    std::vector<vtkIdType> touched;
-    for (vtkIdType c = 0; c < nPolys; ++c)
+    std::fill(changedHashes.begin(), changedHashes.end(), 0);
+    for (const EdgeKey& key : changed)
     {
-      vtkIdType n = 0;
-      const vtkIdType* v = nullptr;
-      polys->GetCellAtId(c, n, v, ids);
-      if (n != 3 ||
-        !(catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[0]])) ||
-          catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[1]])) ||
-          catar::HasProjection(static_cast<catar::ProjectionStatus>(status[v[2]])) ||
-          slot.count(c)))
+      const std::size_t h = EdgeKeyHash()(key) % kHashBits;
+      changedHashes[h / 64] |= std::uint64_t(1) << (h % 64);
+    }
+    std::vector<vtkIdType> touched;
+    for (std::size_t i = 0; i < eligible.size(); ++i)
+    {
+      bool hit = false;
+      for (int e = 0; e < 3; ++e)
+      {
+        const std::size_t h = edgeHashes[i][e] % kHashBits;
+        hit = hit || (changedHashes[h / 64] >> (h % 64)) & 1;
+      }
+      if (!hit)
       {
         continue;
       }
+      vtkIdType n = 0;
+      const vtkIdType* v = nullptr;
+      polys->GetCellAtId(eligible[i], n, v, ids);
       for (int e = 0; e < 3; ++e)
       {
         bool forward = true;
         if (std::binary_search(
               changed.begin(), changed.end(), Key(points, v[e], v[(e + 1) % 3], forward)))
         {
-          touched.push_back(c);
+          touched.push_back(eligible[i]);
           break;
         }
       }
