@@ -393,17 +393,11 @@ void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
   vtkNew<vtkPoints> outPoints;
   outPoints->SetDataTypeToDouble();
   outPoints->SetNumberOfPoints(nPoints + nNew);
-  for (vtkIdType i = 0; i < nPoints; ++i)
-  {
-    outPoints->SetPoint(i, points->GetPoint(i));
-  }
+  outPoints->GetData()->InsertTuples(0, nPoints, 0, points->GetData());
   vtkPointData* inPD = input->GetPointData();
   vtkNew<vtkPointData> outPD;
   outPD->InterpolateAllocate(inPD, nPoints + nNew);
-  for (vtkIdType i = 0; i < nPoints; ++i)
-  {
-    outPD->CopyData(inPD, i, i);
-  }
+  outPD->CopyData(inPD, 0, nPoints, 0);
   vtkNew<vtkIdList> parents;
   parents->SetNumberOfIds(3);
   for (vtkIdType i = 0; i < nNew; ++i)
@@ -432,10 +426,12 @@ void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
   const vtkIdType nCellsOut =
     input->GetNumberOfCells() - static_cast<vtkIdType>(chosen.size()) + nPieces;
   outCD->CopyAllocate(inCD, nCellsOut);
-  vtkIdType out = 0;
+  // Each output cell's input cell, copied in one call at the end.
+  vtkNew<vtkIdList> from;
+  from->Allocate(nCellsOut);
   for (vtkIdType c = 0; c < nVerts + nLines; ++c)
   {
-    outCD->CopyData(inCD, c, out++);
+    from->InsertNextId(c);
   }
   vtkNew<vtkCellArray> outPolys;
   outPolys->AllocateEstimate(nPolys - static_cast<vtkIdType>(chosen.size()) + nPieces, 3);
@@ -450,20 +446,21 @@ void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
       {
         const vtkIdType tri[3] = { t.points[0], t.points[1], t.points[2] };
         outPolys->InsertNextCell(3, tri);
-        outCD->CopyData(inCD, inCell, out++);
+        from->InsertNextId(inCell);
       }
       ++next;
       continue;
     }
     polys->GetCellAtId(c, ids);
     outPolys->InsertNextCell(ids);
-    outCD->CopyData(inCD, inCell, out++);
+    from->InsertNextId(inCell);
   }
   const vtkIdType firstStrip = nVerts + nLines + nPolys;
   for (vtkIdType c = 0; c < input->GetNumberOfStrips(); ++c)
   {
-    outCD->CopyData(inCD, firstStrip + c, out++);
+    from->InsertNextId(firstStrip + c);
   }
+  outCD->CopyData(inCD, from.Get(), vtkIdType(0));
   output->Initialize();
   output->SetPoints(outPoints);
   output->SetVerts(input->GetVerts());
