@@ -31,6 +31,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <vector>
 
 vtkStandardNewMacro(vtkCatadioptricProjection);
 
@@ -283,6 +284,71 @@ CellArrays ProjectCells(vtkPolyData* mesh, CellWorker& worker, const VertexRecor
   }
   return out;
 }
+
+// The cell arrays of `mesh`, refined from the mesh `first` was computed for: a cell copied as it
+// is (sources[c] >= 0, its cell there) keeps its values, the pieces (-1) are projected.
+CellArrays ProjectPieces(vtkPolyData* mesh, CellWorker& worker, const VertexRecord* vertices,
+  const CellArrays& first, const std::vector<vtkIdType>& sources)
+{
+  const vtkIdType nCells = mesh->GetNumberOfCells();
+  CellArrays out;
+  out.Depth = vtkSmartPointer<vtkDoubleArray>::New();
+  out.Depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
+  out.Depth->SetNumberOfTuples(nCells);
+  out.Mirror = vtkSmartPointer<vtkDoubleArray>::New();
+  out.Mirror->SetName("CentroidMirrorPoint");
+  out.Mirror->SetNumberOfComponents(3);
+  out.Mirror->SetNumberOfTuples(nCells);
+  out.Visible = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  out.Visible->SetName(vtkCatadioptricArrayNames::Visible);
+  out.Visible->SetNumberOfTuples(nCells);
+  const double* fromDepth = first.Depth->GetPointer(0);
+  const double* fromMirror = first.Mirror->GetPointer(0);
+  const unsigned char* fromVisible = first.Visible->GetPointer(0);
+  double* depth = out.Depth->GetPointer(0);
+  double* mirror = out.Mirror->GetPointer(0);
+  unsigned char* visible = out.Visible->GetPointer(0);
+  vtkCatadioptricParallel::For(0, nCells, kPointGrain, [&](vtkIdType b, vtkIdType e) {
+    for (vtkIdType c = b; c < e; ++c)
+    {
+      const vtkIdType s = sources[c];
+      depth[c] = s >= 0 ? fromDepth[s] : 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        mirror[3 * c + k] = s >= 0 ? fromMirror[3 * s + k] : 0.0;
+      }
+      visible[c] = s >= 0 ? fromVisible[s] : 0;
+    }
+  });
+  // The pieces: runs of polygons.
+  const vtkIdType firstPoly = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
+  const vtkIdType nPolys = mesh->GetNumberOfPolys();
+  worker.Vertices = vertices;
+  worker.Depth = depth;
+  worker.CentroidMirror = mirror;
+  worker.Visible = visible;
+  worker.CellOffset = firstPoly;
+  mesh->GetPolys()->Visit([&](auto& state) {
+    const auto* off = state.GetOffsets()->GetPointer(0);
+    const auto* conn = state.GetConnectivity()->GetPointer(0);
+    for (vtkIdType p = 0; p < nPolys;)
+    {
+      if (sources[firstPoly + p] >= 0)
+      {
+        ++p;
+        continue;
+      }
+      vtkIdType e = p + 1;
+      while (e < nPolys && sources[firstPoly + e] < 0)
+      {
+        ++e;
+      }
+      worker(off, conn, p, e);
+      p = e;
+    }
+  });
+  return out;
+}
 } // namespace
 
 vtkCatadioptricProjection::vtkCatadioptricProjection() = default;
@@ -420,13 +486,14 @@ int vtkCatadioptricProjection::RequestData(
   // bend too much) replaced by their pieces; the new points' projections appended. Without a
   // bend tolerance most frames split nothing: the cells are projected first, and that pass also
   // finds whether any triangle needs a closer look (catar::NeedsFateCheck); only then is the mesh
-  // refined, and its cells projected again when a triangle was split. With one, every triangle
-  // needs it: the mesh is refined first.
+  // refined, and when a triangle was split its pieces projected (the other cells keep their
+  // values). With one, every triangle needs it: the mesh is refined first.
   this->NumberOfSplitTriangles = 0;
   const bool refineFirst = worker.Tessellation.bendTolerance > 0.0;
   const bool polys = nPts > 0 && input->GetNumberOfPolys() > 0;
   std::atomic<bool> needsFateCheck(polys);
   CellArrays cells;
+  std::vector<vtkIdType> sources; // the refined mesh's cells' cells in the input (-1: pieces)
   if (!refineFirst)
   {
     worker.NeedsFateCheck = &needsFateCheck;
@@ -437,9 +504,9 @@ int vtkCatadioptricProjection::RequestData(
   if (polys && needsFateCheck)
   {
     catar::Tessellation added;
-    this->NumberOfSplitTriangles =
-      vtkCatadioptricTessellatedMesh::Refine(input, projector, worker.Tessellation,
-        status->GetPointer(0), pixels->GetPointer(0), mirror->GetPointer(0), added, output);
+    this->NumberOfSplitTriangles = vtkCatadioptricTessellatedMesh::Refine(input, projector,
+      worker.Tessellation, status->GetPointer(0), pixels->GetPointer(0), mirror->GetPointer(0),
+      added, output, refineFirst ? nullptr : &sources);
     if (this->NumberOfSplitTriangles > 0)
     {
       camera->WriteToFieldData(output->GetFieldData());
@@ -475,9 +542,13 @@ int vtkCatadioptricProjection::RequestData(
       records.swap(grown);
     }
   }
-  if (refineFirst || this->NumberOfSplitTriangles > 0)
+  if (refineFirst)
   {
     cells = ProjectCells(this->NumberOfSplitTriangles > 0 ? output : input, worker, records.get());
+  }
+  else if (this->NumberOfSplitTriangles > 0)
+  {
+    cells = ProjectPieces(output, worker, records.get(), cells, sources);
   }
   vtkPointData* pd = output->GetPointData();
   pd->AddArray(pixels);

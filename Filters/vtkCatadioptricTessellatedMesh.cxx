@@ -363,9 +363,11 @@ std::vector<catar::Tessellation> TessellateAlike(vtkPolyData* input,
 }
 
 // The refined mesh: the input's points then the new ones (point data interpolated), the
-// polygons with each chosen triangle's pieces in its place (its cell data copied).
+// polygons with each chosen triangle's pieces in its place (its cell data copied); `sources` (may
+// be null): each output cell's input cell, -1 for a piece.
 void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
-  std::vector<catar::Tessellation>& pieces, catar::Tessellation& added, vtkPolyData* output)
+  std::vector<catar::Tessellation>& pieces, catar::Tessellation& added, vtkPolyData* output,
+  std::vector<vtkIdType>* sources)
 {
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType nPolys = polys->GetNumberOfCells();
@@ -429,9 +431,21 @@ void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
   // Each output cell's input cell, copied in one call at the end.
   vtkNew<vtkIdList> from;
   from->Allocate(nCellsOut);
+  if (sources)
+  {
+    sources->clear();
+    sources->reserve(static_cast<std::size_t>(nCellsOut));
+  }
+  const auto add = [&](vtkIdType inCell, bool piece) {
+    from->InsertNextId(inCell);
+    if (sources)
+    {
+      sources->push_back(piece ? -1 : inCell);
+    }
+  };
   for (vtkIdType c = 0; c < nVerts + nLines; ++c)
   {
-    from->InsertNextId(c);
+    add(c, false);
   }
   vtkNew<vtkCellArray> outPolys;
   outPolys->AllocateEstimate(nPolys - static_cast<vtkIdType>(chosen.size()) + nPieces, 3);
@@ -446,19 +460,19 @@ void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
       {
         const vtkIdType tri[3] = { t.points[0], t.points[1], t.points[2] };
         outPolys->InsertNextCell(3, tri);
-        from->InsertNextId(inCell);
+        add(inCell, true);
       }
       ++next;
       continue;
     }
     polys->GetCellAtId(c, ids);
     outPolys->InsertNextCell(ids);
-    from->InsertNextId(inCell);
+    add(inCell, false);
   }
   const vtkIdType firstStrip = nVerts + nLines + nPolys;
   for (vtkIdType c = 0; c < input->GetNumberOfStrips(); ++c)
   {
-    from->InsertNextId(firstStrip + c);
+    add(firstStrip + c, false);
   }
   outCD->CopyData(inCD, from.Get(), vtkIdType(0));
   output->Initialize();
@@ -476,7 +490,7 @@ void Assemble(vtkPolyData* input, const std::vector<vtkIdType>& chosen,
 vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   const catar::Projector& projector, const catar::TessellationOptions& options,
   const unsigned char* status, const double* pixels, const double* mirrorPoints,
-  catar::Tessellation& added, vtkPolyData* output)
+  catar::Tessellation& added, vtkPolyData* output, std::vector<vtkIdType>* sources)
 {
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType nPolys = polys->GetNumberOfCells();
@@ -503,6 +517,6 @@ vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   }
   std::vector<catar::Tessellation> pieces =
     TessellateAlike(input, projector, options, status, pixels, mirrorPoints, chosen);
-  Assemble(input, chosen, pieces, added, output);
+  Assemble(input, chosen, pieces, added, output, sources);
   return static_cast<vtkIdType>(chosen.size());
 }

@@ -14,6 +14,8 @@
 #include "ImageTessellation.h"           // for catar::TessellationOptions
 #include "vtkType.h"                     // for vtkIdType
 
+#include <vector> // for std::vector
+
 class vtkPolyData;
 
 class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricTessellatedMesh
@@ -27,10 +29,12 @@ public:
   /// triangle's vertices), cells in the input's order with each split triangle's pieces in its
   /// place (with its cell data); `added` holds the new points' projections. At most 2^22 pieces
   /// are made in all (each split triangle's share of that bounds its depth). Returns the number of
-  /// triangles split; 0 leaves `output` and `added` as they are.
+  /// triangles split; 0 leaves `output` and `added` as they are. `sources` (may be null) receives,
+  /// when a triangle is split, each output cell's input cell, or -1 for a piece.
   static vtkIdType Refine(vtkPolyData* input, const catar::Projector& projector,
     const catar::TessellationOptions& options, const unsigned char* status, const double* pixels,
-    const double* mirrorPoints, catar::Tessellation& added, vtkPolyData* output);
+    const double* mirrorPoints, catar::Tessellation& added, vtkPolyData* output,
+    std::vector<vtkIdType>* sources = nullptr);
 };
 
 #endif
