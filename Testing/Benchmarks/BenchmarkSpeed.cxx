@@ -371,16 +371,19 @@ void LargeObjectTable(vtkCatadioptricCamera* camera, vtkImageData* frame, int fr
   AddRow(rows, "reference, 3 spots with shadows, lights moving", 2,
     [&](int) { return TimeUpdate(shadowTracer); });
   tracer->Update();
+  pipeline.Frame(0);
   int dims[3];
   frame->GetDimensions(dims);
   const double pixels = static_cast<double>(dims[0]) * dims[1];
   std::printf("\nA large object: a sphere of %lld triangles, 0.8 m in radius, around the camera "
               "and the mirror, seen inside; it covers %lld of the frame's %.0f pixels (%.1f %%; "
-              "the mirror's whole image is about a third of the frame). Frames in turn, median "
-              "(ms):\n\n",
+              "the mirror's whole image is about a third of the frame); %lld of its triangles "
+              "cross the mirror's visibility boundary and are split there every frame. Frames in "
+              "turn, median (ms):\n\n",
     static_cast<long long>(mesh->GetNumberOfPolys()),
     static_cast<long long>(tracer->GetNumberOfHits()), pixels,
-    100.0 * tracer->GetNumberOfHits() / pixels);
+    100.0 * tracer->GetNumberOfHits() / pixels,
+    static_cast<long long>(pipeline.GetProjection()->GetNumberOfSplitTriangles()));
   RunInTurn(rows, name, mesh->GetNumberOfPolys(), frames, maxSeconds, results);
 }
 

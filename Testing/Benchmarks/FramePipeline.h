@@ -177,6 +177,7 @@ public:
   vtkImageData* GetOutput() { return this->Compositor->GetOutput(); }
   vtkCatadioptricCompositor* GetCompositor() { return this->Compositor; }
   vtkCatadioptricLighting* GetLighting() { return this->Lighting; }
+  vtkCatadioptricProjection* GetProjection() { return this->Projection; }
 
 private:
   vtkCatadioptricCamera* Camera;
