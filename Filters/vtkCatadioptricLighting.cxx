@@ -99,10 +99,7 @@ struct PointInputs
   vtkDataArray* visible;
   const double* mirrorValues; // MirrorPoint as doubles, or null
   vtkDataArray* mirror;
-  const float* normalFloats;                // given normals as floats, or null
-  const double* normalDoubles;              // given normals as doubles, or null
-  vtkDataArray* normalArray;                // given normals of another type
-  const std::vector<catar::Vec3>& normals;  // the mesh's own normals when none are given
+  const std::vector<catar::Vec3>& normals;  // the given normals made unit, or the mesh's own
   const std::vector<catar::Vec3>* fallback; // for given normals of zero length, NaN or Inf
   const std::vector<float>& pointBase;      // cell colours averaged at points, or empty
   const vtkCatadioptricColorArray& base;
@@ -124,7 +121,7 @@ void ShadePoints(const PointInputs& in, vtkIdType nPts, const catar::ShadeBatch:
         std::fill(o, o + 4, 0);
         continue;
       }
-      double mp[3], nn[3];
+      double mp[3];
       if (in.mirrorValues)
       {
         std::copy(in.mirrorValues + 3 * i, in.mirrorValues + 3 * i + 3, mp);
@@ -134,26 +131,7 @@ void ShadePoints(const PointInputs& in, vtkIdType nPts, const catar::ShadeBatch:
         in.mirror->GetTuple(i, mp);
       }
       const catar::Vec3 p = in.points(i);
-      catar::Vec3 n;
-      if (in.normalFloats)
-      {
-        n = catar::Vec3(
-          in.normalFloats[3 * i], in.normalFloats[3 * i + 1], in.normalFloats[3 * i + 2])
-              .normalized();
-      }
-      else if (in.normalDoubles)
-      {
-        n = V3(in.normalDoubles + 3 * i).normalized();
-      }
-      else if (in.normals.empty())
-      {
-        in.normalArray->GetTuple(i, nn);
-        n = V3(nn).normalized();
-      }
-      else
-      {
-        n = in.normals[i];
-      }
+      catar::Vec3 n = in.normals[i];
       if (in.fallback && !(n.squaredNorm() > 0.0))
       {
         n = (*in.fallback)[i];
@@ -278,6 +256,42 @@ struct vtkCatadioptricLighting::Internals
         normals, normals->GetMTime(), HasDegenerateNormal(normals, floats, doubles, n));
     }
     return std::get<2>(this->Degenerate);
+  }
+
+  // The given normals made unit length, and for which array and MTime: once, not every frame.
+  std::vector<catar::Vec3> UnitNormals;
+  std::tuple<vtkDataArray*, vtkMTimeType, vtkIdType> UnitNormalsSource{ nullptr, 0, 0 };
+
+  const std::vector<catar::Vec3>& GetUnitNormals(
+    vtkDataArray* normals, const float* floats, const double* doubles, vtkIdType n)
+  {
+    const auto source = std::make_tuple(normals, normals->GetMTime(), n);
+    if (source != this->UnitNormalsSource)
+    {
+      this->UnitNormals.resize(static_cast<std::size_t>(n));
+      catar::Vec3* unit = this->UnitNormals.data();
+      vtkCatadioptricParallel::For(0, n, kPointGrain, [&](vtkIdType b, vtkIdType e) {
+        for (vtkIdType i = b; i < e; ++i)
+        {
+          if (floats)
+          {
+            unit[i] = catar::Vec3(floats[3 * i], floats[3 * i + 1], floats[3 * i + 2]).normalized();
+          }
+          else if (doubles)
+          {
+            unit[i] = V3(doubles + 3 * i).normalized();
+          }
+          else
+          {
+            double t[3];
+            normals->GetTuple(i, t);
+            unit[i] = V3(t).normalized();
+          }
+        }
+      });
+      this->UnitNormalsSource = source;
+    }
+    return this->UnitNormals;
   }
 
   // Cell base colours averaged at the points (Gouraud), and what they were averaged from: the
@@ -913,10 +927,7 @@ int vtkCatadioptricLighting::RequestData(
   if (mode == GOURAUD)
   {
     vtkDataArray* inNormals = input->GetPointData()->GetNormals();
-    static const std::vector<catar::Vec3> none;
-    const std::vector<catar::Vec3>& normals = (inNormals && inNormals->GetNumberOfComponents() == 3)
-      ? none
-      : this->Internal->GetNormals(input);
+    const bool given = inNormals && inNormals->GetNumberOfComponents() == 3;
     // Cell base colours become point colours: the mean over the cells around each point, kept
     // while the colours and the polygons are unchanged.
     static const std::vector<float> noPointBase;
@@ -933,17 +944,21 @@ int vtkCatadioptricLighting::RequestData(
     const double* mirrorValues = (mirrorDoubles && mirror->GetNumberOfComponents() == 3)
       ? mirrorDoubles->GetPointer(0)
       : nullptr;
-    auto* normalFloatArray = normals.empty() ? vtkFloatArray::SafeDownCast(inNormals) : nullptr;
-    auto* normalDoubleArray = normals.empty() ? vtkDoubleArray::SafeDownCast(inNormals) : nullptr;
+    auto* normalFloatArray = given ? vtkFloatArray::SafeDownCast(inNormals) : nullptr;
+    auto* normalDoubleArray = given ? vtkDoubleArray::SafeDownCast(inNormals) : nullptr;
     const float* normalFloats = normalFloatArray ? normalFloatArray->GetPointer(0) : nullptr;
     const double* normalDoubles = normalDoubleArray ? normalDoubleArray->GetPointer(0) : nullptr;
+    // Given normals made unit once (kept while the array is unchanged), else the mesh's own.
+    const std::vector<catar::Vec3>& normals = given
+      ? this->Internal->GetUnitNormals(inNormals, normalFloats, normalDoubles, nPts)
+      : this->Internal->GetNormals(input);
     // Given normals of zero length or with NaN or Inf take the mesh's own vertex normal.
     const std::vector<catar::Vec3>* fallback =
-      normals.empty() && this->Internal->HasDegenerate(inNormals, normalFloats, normalDoubles, nPts)
+      given && this->Internal->HasDegenerate(inNormals, normalFloats, normalDoubles, nPts)
       ? &this->Internal->GetNormals(input)
       : nullptr;
-    const PointInputs pin{ points, visibleBytes, pointVisible, mirrorValues, mirror, normalFloats,
-      normalDoubles, inNormals, normals, fallback, pointBase, base, materialIndex, pose };
+    const PointInputs pin{ points, visibleBytes, pointVisible, mirrorValues, mirror, normals,
+      fallback, pointBase, base, materialIndex, pose };
     ShadePoints(pin, nPts, shading, out);
     output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
     output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
