@@ -692,3 +692,67 @@ TEST(vtkCatadioptricLighting, CellColoursAveragedAtPointsOnceAndAgainWhenTheyCha
     vtkUnsignedCharArray::SafeDownCast(lighting->GetOutput()->GetPointData()->GetArray("Colors"));
   EXPECT_FALSE(std::equal(first.begin(), first.end(), changed->GetPointer(0)));
 }
+
+TEST(vtkCatadioptricLighting, GivenNormalsMadeUnitOnceAndAgainWhenTheyChange)
+{
+  // Given normals are made unit length once and kept while their array is unchanged: a filter
+  // that runs frame after frame gives a fresh filter's colours, before and after the normals
+  // change (scaled, then turned), and the change shows.
+  vtkNew<vtkCatadioptricCamera> cam;
+  catar_test::SetSmallDemoCamera(cam);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.05, -0.3, 0.95);
+  sphere->SetRadius(0.04);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(12);
+  sphere->Update();
+  vtkNew<vtkPolyData> mesh;
+  mesh->DeepCopy(sphere->GetOutput());
+  auto* normals = vtkFloatArray::SafeDownCast(mesh->GetPointData()->GetNormals());
+  ASSERT_NE(normals, nullptr);
+  auto colours = [&](vtkCatadioptricLighting* lighting) {
+    lighting->Update();
+    auto* c =
+      vtkUnsignedCharArray::SafeDownCast(lighting->GetOutput()->GetPointData()->GetArray("Colors"));
+    EXPECT_NE(c, nullptr);
+    return c
+      ? std::vector<unsigned char>(c->GetPointer(0), c->GetPointer(0) + 4 * c->GetNumberOfTuples())
+      : std::vector<unsigned char>();
+  };
+  auto setUp = [&](vtkCatadioptricProjection* proj, vtkCatadioptricLighting* lighting) {
+    proj->SetCamera(cam);
+    proj->SetInputData(mesh);
+    lighting->SetInputConnection(proj->GetOutputPort());
+    lighting->AddSpotLight(0.2, -0.2, 1.3, 0.05, -0.3, 0.95, 40, 1, 0.9, 0.8);
+    lighting->SetSpecular(0.4);
+  };
+  vtkNew<vtkCatadioptricProjection> proj;
+  vtkNew<vtkCatadioptricLighting> lighting;
+  setUp(proj, lighting);
+  auto fresh = [&]() {
+    vtkNew<vtkCatadioptricProjection> p;
+    vtkNew<vtkCatadioptricLighting> l;
+    setUp(p, l);
+    return colours(l);
+  };
+  const std::vector<unsigned char> first = colours(lighting);
+  EXPECT_EQ(first, fresh());
+  // Scaled by 3: the same unit normals, the same colours.
+  for (vtkIdType i = 0; i < 3 * normals->GetNumberOfTuples(); ++i)
+  {
+    normals->SetValue(i, 3.0f * normals->GetValue(i));
+  }
+  normals->Modified();
+  EXPECT_EQ(colours(lighting), first);
+  // Turned a quarter turn about z: other colours, as a fresh filter gives them.
+  for (vtkIdType i = 0; i < normals->GetNumberOfTuples(); ++i)
+  {
+    const float x = normals->GetComponent(i, 0), y = normals->GetComponent(i, 1);
+    normals->SetComponent(i, 0, -y);
+    normals->SetComponent(i, 1, x);
+  }
+  normals->Modified();
+  const std::vector<unsigned char> turned = colours(lighting);
+  EXPECT_EQ(turned, fresh());
+  EXPECT_NE(turned, first);
+}
