@@ -243,6 +243,22 @@ struct CellArrays
   vtkSmartPointer<vtkDoubleArray> Depth;
   vtkSmartPointer<vtkDoubleArray> Mirror;
   vtkSmartPointer<vtkUnsignedCharArray> Visible;
+
+  CellArrays() = default;
+  // For n cells, not filled.
+  explicit CellArrays(vtkIdType n)
+    : Depth(vtkSmartPointer<vtkDoubleArray>::New())
+    , Mirror(vtkSmartPointer<vtkDoubleArray>::New())
+    , Visible(vtkSmartPointer<vtkUnsignedCharArray>::New())
+  {
+    this->Depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
+    this->Depth->SetNumberOfTuples(n);
+    this->Mirror->SetName("CentroidMirrorPoint");
+    this->Mirror->SetNumberOfComponents(3);
+    this->Mirror->SetNumberOfTuples(n);
+    this->Visible->SetName(vtkCatadioptricArrayNames::Visible);
+    this->Visible->SetNumberOfTuples(n);
+  }
 };
 
 // Projects the centroids of `mesh`'s polygons (whose points' records are `vertices`) and decides
@@ -250,17 +266,7 @@ struct CellArrays
 CellArrays ProjectCells(vtkPolyData* mesh, CellWorker& worker, const VertexRecord* vertices)
 {
   const vtkIdType nCells = mesh->GetNumberOfCells();
-  CellArrays out;
-  out.Depth = vtkSmartPointer<vtkDoubleArray>::New();
-  out.Depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
-  out.Depth->SetNumberOfTuples(nCells);
-  out.Mirror = vtkSmartPointer<vtkDoubleArray>::New();
-  out.Mirror->SetName("CentroidMirrorPoint");
-  out.Mirror->SetNumberOfComponents(3);
-  out.Mirror->SetNumberOfTuples(nCells);
-  out.Visible = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  out.Visible->SetName(vtkCatadioptricArrayNames::Visible);
-  out.Visible->SetNumberOfTuples(nCells);
+  CellArrays out(nCells);
   // Zeros for vertices, lines and strips; the polygons' values are all written below.
   const vtkIdType firstPoly = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
   const vtkIdType endPoly = firstPoly + mesh->GetNumberOfPolys();
@@ -291,17 +297,7 @@ CellArrays ProjectPieces(vtkPolyData* mesh, CellWorker& worker, const VertexReco
   const CellArrays& first, const std::vector<vtkIdType>& sources)
 {
   const vtkIdType nCells = mesh->GetNumberOfCells();
-  CellArrays out;
-  out.Depth = vtkSmartPointer<vtkDoubleArray>::New();
-  out.Depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
-  out.Depth->SetNumberOfTuples(nCells);
-  out.Mirror = vtkSmartPointer<vtkDoubleArray>::New();
-  out.Mirror->SetName("CentroidMirrorPoint");
-  out.Mirror->SetNumberOfComponents(3);
-  out.Mirror->SetNumberOfTuples(nCells);
-  out.Visible = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  out.Visible->SetName(vtkCatadioptricArrayNames::Visible);
-  out.Visible->SetNumberOfTuples(nCells);
+  CellArrays out(nCells);
   const double* fromDepth = first.Depth->GetPointer(0);
   const double* fromMirror = first.Mirror->GetPointer(0);
   const unsigned char* fromVisible = first.Visible->GetPointer(0);

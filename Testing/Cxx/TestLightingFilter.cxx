@@ -575,6 +575,33 @@ TEST(vtkCatadioptricLighting, OutputRecordsTheLighting)
   EXPECT_FALSE(vtkCatadioptricLighting::HasLightingRecord(plate->GetFieldData()));
 }
 
+namespace
+{
+// A 4 cm sphere (24 x 12) in front of the small demo camera's mirror, with its normals: a mesh
+// of its own (a deep copy), to be changed by the test.
+vtkSmartPointer<vtkPolyData> SmallLitSphere()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0.05, -0.3, 0.95);
+  sphere->SetRadius(0.04);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(12);
+  sphere->Update();
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->DeepCopy(sphere->GetOutput());
+  return mesh;
+}
+
+// The lighting of the projection's output: a spotlight on that sphere, specular 0.4, no shadows.
+void SpotOnSmallSphere(vtkCatadioptricProjection* proj, vtkCatadioptricLighting* lighting)
+{
+  lighting->SetInputConnection(proj->GetOutputPort());
+  lighting->AddSpotLight(0.2, -0.2, 1.3, 0.05, -0.3, 0.95, 40, 1, 0.9, 0.8);
+  lighting->SetSpecular(0.4);
+  lighting->ShadowsOff();
+}
+} // namespace
+
 // Gouraud shading of cell colours: they are averaged at the points once and kept while the
 // colours and the polygons are unchanged. Every frame's colours are those of the same mesh given
 // the averages as point colours (what the filter computed anew every frame before): after the
@@ -584,14 +611,7 @@ TEST(vtkCatadioptricLighting, CellColoursAveragedAtPointsOnceAndAgainWhenTheyCha
 {
   vtkNew<vtkCatadioptricCamera> cam;
   catar_test::SetSmallDemoCamera(cam);
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0.05, -0.3, 0.95);
-  sphere->SetRadius(0.04);
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(12);
-  sphere->Update();
-  vtkNew<vtkPolyData> mesh;
-  mesh->ShallowCopy(sphere->GetOutput());
+  vtkSmartPointer<vtkPolyData> mesh = SmallLitSphere();
   const vtkIdType nCells = mesh->GetNumberOfCells();
   vtkNew<vtkUnsignedCharArray> cellColors;
   cellColors->SetName("Colors");
@@ -642,10 +662,7 @@ TEST(vtkCatadioptricLighting, CellColoursAveragedAtPointsOnceAndAgainWhenTheyCha
                     vtkCatadioptricLighting* lighting) {
     proj->SetCamera(cam);
     proj->SetInputData(input);
-    lighting->SetInputConnection(proj->GetOutputPort());
-    lighting->AddSpotLight(0.2, -0.2, 1.3, 0.05, -0.3, 0.95, 40, 1, 0.9, 0.8);
-    lighting->SetSpecular(0.4);
-    lighting->ShadowsOff();
+    SpotOnSmallSphere(proj, lighting);
   };
   vtkNew<vtkCatadioptricProjection> proj, refProj;
   vtkNew<vtkCatadioptricLighting> lighting, reference;
@@ -700,14 +717,7 @@ TEST(vtkCatadioptricLighting, GivenNormalsMadeUnitOnceAndAgainWhenTheyChange)
   // change (scaled, then turned), and the change shows.
   vtkNew<vtkCatadioptricCamera> cam;
   catar_test::SetSmallDemoCamera(cam);
-  vtkNew<vtkSphereSource> sphere;
-  sphere->SetCenter(0.05, -0.3, 0.95);
-  sphere->SetRadius(0.04);
-  sphere->SetThetaResolution(24);
-  sphere->SetPhiResolution(12);
-  sphere->Update();
-  vtkNew<vtkPolyData> mesh;
-  mesh->DeepCopy(sphere->GetOutput());
+  vtkSmartPointer<vtkPolyData> mesh = SmallLitSphere();
   auto* normals = vtkFloatArray::SafeDownCast(mesh->GetPointData()->GetNormals());
   ASSERT_NE(normals, nullptr);
   auto colours = [&](vtkCatadioptricLighting* lighting) {
@@ -722,9 +732,7 @@ TEST(vtkCatadioptricLighting, GivenNormalsMadeUnitOnceAndAgainWhenTheyChange)
   auto setUp = [&](vtkCatadioptricProjection* proj, vtkCatadioptricLighting* lighting) {
     proj->SetCamera(cam);
     proj->SetInputData(mesh);
-    lighting->SetInputConnection(proj->GetOutputPort());
-    lighting->AddSpotLight(0.2, -0.2, 1.3, 0.05, -0.3, 0.95, 40, 1, 0.9, 0.8);
-    lighting->SetSpecular(0.4);
+    SpotOnSmallSphere(proj, lighting);
   };
   vtkNew<vtkCatadioptricProjection> proj;
   vtkNew<vtkCatadioptricLighting> lighting;
