@@ -520,6 +520,19 @@ vtkSmartPointer<vtkCatadioptricLighting> Spotlight()
   return lighting;
 }
 
+// A tracer of `meshes`, each lit by `lighting`, through `camera`, with the visible triangles.
+void SetUpTracer(vtkCatadioptricRayTracer* tracer, vtkCatadioptricCamera* camera,
+  const std::vector<vtkPolyData*>& meshes, vtkCatadioptricLighting* lighting)
+{
+  tracer->SetCamera(camera);
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+  {
+    tracer->AddMeshData(meshes[m]);
+    tracer->SetMeshLighting(static_cast<int>(m), lighting);
+  }
+  tracer->OutputVisibleTriangleOn();
+}
+
 // Renders `meshes` lit by `lighting` through `camera` with a tracer of its own (nothing kept).
 vtkSmartPointer<vtkImageData> FreshRender(vtkCatadioptricCamera* camera,
   const std::vector<vtkPolyData*>& meshes, vtkCatadioptricLighting* lighting)
@@ -527,13 +540,7 @@ vtkSmartPointer<vtkImageData> FreshRender(vtkCatadioptricCamera* camera,
   vtkNew<vtkCatadioptricCamera> copy;
   copy->SetModel(camera->GetModel());
   vtkNew<vtkCatadioptricRayTracer> tracer;
-  tracer->SetCamera(copy);
-  for (std::size_t m = 0; m < meshes.size(); ++m)
-  {
-    tracer->AddMeshData(meshes[m]);
-    tracer->SetMeshLighting(static_cast<int>(m), lighting);
-  }
-  tracer->OutputVisibleTriangleOn();
+  SetUpTracer(tracer, copy, meshes, lighting);
   tracer->Update();
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->DeepCopy(tracer->GetOutput());
@@ -574,10 +581,7 @@ TEST(vtkCatadioptricRayTracer, KeptSceneAndRaysGiveAFreshTracersPicture)
   vtkNew<vtkCatadioptricRayTracer> tracer;
   vtkNew<catar_test::ErrorCounter> errors;
   errors->Watch(tracer);
-  tracer->SetCamera(camera);
-  tracer->AddMeshData(ball);
-  tracer->SetMeshLighting(0, lighting);
-  tracer->OutputVisibleTriangleOn();
+  SetUpTracer(tracer, camera, { ball }, lighting);
   tracer->Update();
   ASSERT_EQ(errors->Count, 0) << errors->Last;
   EXPECT_GT(tracer->GetNumberOfHits(), 1000);
@@ -643,10 +647,7 @@ TEST(vtkCatadioptricRayTracer, ChangedMeshesBuildTheSceneAgain)
   vtkNew<vtkCatadioptricRayTracer> tracer;
   vtkNew<catar_test::ErrorCounter> errors;
   errors->Watch(tracer);
-  tracer->SetCamera(camera);
-  tracer->AddMeshData(ball);
-  tracer->SetMeshLighting(0, lighting);
-  tracer->OutputVisibleTriangleOn();
+  SetUpTracer(tracer, camera, { ball }, lighting);
   tracer->Update();
   ASSERT_EQ(errors->Count, 0) << errors->Last;
   vtkNew<vtkImageData> first;
