@@ -352,6 +352,7 @@ vtkCatadioptricProjection::vtkCatadioptricProjection() = default;
 vtkCatadioptricProjection::~vtkCatadioptricProjection() = default;
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricProjection);
+vtkCatadioptricCameraSlotValidMacro(vtkCatadioptricProjection);
 vtkCatadioptricCameraSlotTrajectoryMacro(vtkCatadioptricProjection);
 
 int vtkCatadioptricProjection::RequestInformation(
@@ -393,14 +394,9 @@ int vtkCatadioptricProjection::RequestData(
     vtkErrorMacro("Bad input mesh: " << inputError);
     return 0;
   }
-  vtkCatadioptricCamera* camera = this->ResolveCamera(outputVector->GetInformationObject(0));
+  vtkCatadioptricCamera* camera = this->ResolveValidCamera(outputVector->GetInformationObject(0));
   if (!camera)
   {
-    return 0;
-  }
-  if (!camera->IsValid())
-  {
-    vtkErrorMacro("Invalid camera: " << camera->GetLastError());
     return 0;
   }
   const catar::Projector projector(camera->GetModel());

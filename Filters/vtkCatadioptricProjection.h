@@ -151,6 +151,8 @@ protected:
 
   /// The camera to use for this execution (Camera, or one loaded from CalibrationFileName).
   vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
+  /// ResolveCamera, and null with an error for a camera that is not valid.
+  vtkCatadioptricCamera* ResolveValidCamera(vtkInformation* outInfo = nullptr);
 
   vtkCatadioptricCameraSlot CameraSlot;
   int Solver = QUARTIC;

@@ -110,6 +110,7 @@ vtkCatadioptricEnvironmentSource::~vtkCatadioptricEnvironmentSource()
 }
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricEnvironmentSource);
+vtkCatadioptricCameraSlotValidMacro(vtkCatadioptricEnvironmentSource);
 vtkCatadioptricCameraSlotTrajectoryMacro(vtkCatadioptricEnvironmentSource);
 
 int vtkCatadioptricEnvironmentSource::RequestInformation(
@@ -136,14 +137,9 @@ int vtkCatadioptricEnvironmentSource::RequestInformation(
 int vtkCatadioptricEnvironmentSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkCatadioptricCamera* camera = this->ResolveCamera(outputVector->GetInformationObject(0));
+  vtkCatadioptricCamera* camera = this->ResolveValidCamera(outputVector->GetInformationObject(0));
   if (!camera)
   {
-    return 0;
-  }
-  if (!camera->IsValid())
-  {
-    vtkErrorMacro("Invalid camera: " << camera->GetLastError());
     return 0;
   }
   const bool usesRoom = this->Mode == ROOM || !this->PanoramaFileName || !*this->PanoramaFileName;

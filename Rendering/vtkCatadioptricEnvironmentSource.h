@@ -163,6 +163,8 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
+  /// ResolveCamera, and null with an error for a camera that is not valid.
+  vtkCatadioptricCamera* ResolveValidCamera(vtkInformation* outInfo = nullptr);
   /// Brings the cached panorama of PANORAMA mode up to date (read or generated); false after an
   /// error (reported).
   bool UpdatePanorama(vtkCatadioptricCamera* camera);

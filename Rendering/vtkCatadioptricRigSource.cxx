@@ -32,6 +32,7 @@ vtkCatadioptricRigSource::vtkCatadioptricRigSource()
 vtkCatadioptricRigSource::~vtkCatadioptricRigSource() = default;
 
 vtkCatadioptricCameraSlotMacro(vtkCatadioptricRigSource);
+vtkCatadioptricCameraSlotValidMacro(vtkCatadioptricRigSource);
 vtkCatadioptricCameraSlotTrajectoryMacro(vtkCatadioptricRigSource);
 
 void vtkCatadioptricRigSource::SetFrustumLength(double length)
@@ -68,14 +69,9 @@ int vtkCatadioptricRigSource::RequestData(
   {
     return 0;
   }
-  vtkCatadioptricCamera* camera = this->ResolveCamera(outputVector->GetInformationObject(0));
+  vtkCatadioptricCamera* camera = this->ResolveValidCamera(outputVector->GetInformationObject(0));
   if (!camera)
   {
-    return 0;
-  }
-  if (!camera->IsValid())
-  {
-    vtkErrorMacro("Invalid camera: " << camera->GetLastError());
     return 0;
   }
   const catar::Projector projector(camera->GetModel());

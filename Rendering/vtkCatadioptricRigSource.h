@@ -142,6 +142,8 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
+  /// ResolveCamera, and null with an error for a camera that is not valid.
+  vtkCatadioptricCamera* ResolveValidCamera(vtkInformation* outInfo = nullptr);
 
   vtkCatadioptricCameraSlot CameraSlot;
   double FrustumLength = 0.0;

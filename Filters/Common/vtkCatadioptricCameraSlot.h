@@ -301,4 +301,21 @@ private:
     return camera;                                                                                 \
   }
 
+/**
+ * Defines ResolveValidCamera(outInfo) for an algorithm with vtkCatadioptricCameraSlotMacro:
+ * ResolveCamera(outInfo), and null with an error ("Invalid camera: ...") for a camera that is
+ * not valid. What RequestData asks for before projecting.
+ */
+#define vtkCatadioptricCameraSlotValidMacro(thisClass)                                             \
+  vtkCatadioptricCamera* thisClass::ResolveValidCamera(vtkInformation* outInfo)                    \
+  {                                                                                                \
+    vtkCatadioptricCamera* camera = this->ResolveCamera(outInfo);                                  \
+    if (camera && !camera->IsValid())                                                              \
+    {                                                                                              \
+      vtkErrorMacro("Invalid camera: " << camera->GetLastError());                                 \
+      return nullptr;                                                                              \
+    }                                                                                              \
+    return camera;                                                                                 \
+  }
+
 #endif
