@@ -217,6 +217,31 @@ vtkSmartPointer<vtkCatadioptricRayTracer> MakeTracer(vtkCatadioptricCamera* came
   return tracer;
 }
 
+// Both renderers of one mesh, as the interleaved tables time them: the fast path (iterative
+// solver) with one moving spotlight and with three and shadows, and the exact tracer lit by each.
+struct BothRenderers
+{
+  BothRenderers(vtkPolyData* mesh, vtkCatadioptricCamera* camera, vtkImageData* frame)
+    : Fast(mesh, camera, frame, Options(1, false))
+    , FastShadows(mesh, camera, frame, Options(3, true))
+    , Exact(MakeTracer(camera, frame, mesh, Fast.GetLighting()))
+    , ExactShadows(MakeTracer(camera, frame, mesh, FastShadows.GetLighting()))
+  {
+  }
+  static FrameOptions Options(int lights, bool shadows)
+  {
+    FrameOptions options;
+    options.solver = vtkCatadioptricProjection::ITERATIVE;
+    options.lights = lights;
+    options.shadows = shadows;
+    return options;
+  }
+  FramePipeline Fast;
+  FramePipeline FastShadows;
+  vtkSmartPointer<vtkCatadioptricRayTracer> Exact;
+  vtkSmartPointer<vtkCatadioptricRayTracer> ExactShadows;
+};
+
 // A sphere of 69,696 triangles, 0.8 m in radius, around the camera and the mirror (centred 10 cm
 // behind the mirror's centre, towards the camera), its triangles turned to face inwards: an
 // object that fills every pixel of the mirror's image (a third of the frame). The spotlights
@@ -245,19 +270,12 @@ vtkSmartPointer<vtkPolyData> SurroundingSphere()
 void ReferenceTable(vtkPolyData* target, const std::string& name, vtkCatadioptricCamera* camera,
   vtkImageData* frame, int frames, double maxSeconds, std::vector<Result>& results)
 {
-  FrameOptions options;
-  options.solver = vtkCatadioptricProjection::ITERATIVE;
-  FramePipeline pipeline(target, camera, frame, options);
-  FrameOptions shadowOptions = options;
-  shadowOptions.lights = 3;
-  shadowOptions.shadows = true;
-  FramePipeline shadowPipeline(target, camera, frame, shadowOptions);
-
-  // Light moving: lit by the pipeline's own (moving) spotlight(s).
-  vtkSmartPointer<vtkCatadioptricRayTracer> lightTracer =
-    MakeTracer(camera, frame, target, pipeline.GetLighting());
-  vtkSmartPointer<vtkCatadioptricRayTracer> shadowTracer =
-    MakeTracer(camera, frame, target, shadowPipeline.GetLighting());
+  // Light moving: the tracers are lit by the pipelines' own (moving) spotlight(s).
+  BothRenderers both(target, camera, frame);
+  FramePipeline& pipeline = both.Fast;
+  FramePipeline& shadowPipeline = both.FastShadows;
+  vtkCatadioptricRayTracer* lightTracer = both.Exact;
+  vtkCatadioptricRayTracer* shadowTracer = both.ExactShadows;
 
   // Pose moving: a camera of its own and a still spotlight.
   vtkNew<vtkCatadioptricCamera> movingCamera;
@@ -351,17 +369,11 @@ void LargeObjectTable(vtkCatadioptricCamera* camera, vtkImageData* frame, int fr
 {
   const std::string name = "surrounding sphere";
   vtkSmartPointer<vtkPolyData> mesh = SurroundingSphere();
-  FrameOptions options;
-  options.solver = vtkCatadioptricProjection::ITERATIVE;
-  FramePipeline pipeline(mesh, camera, frame, options);
-  FrameOptions shadowOptions = options;
-  shadowOptions.lights = 3;
-  shadowOptions.shadows = true;
-  FramePipeline shadowPipeline(mesh, camera, frame, shadowOptions);
-  vtkSmartPointer<vtkCatadioptricRayTracer> tracer =
-    MakeTracer(camera, frame, mesh, pipeline.GetLighting());
-  vtkSmartPointer<vtkCatadioptricRayTracer> shadowTracer =
-    MakeTracer(camera, frame, mesh, shadowPipeline.GetLighting());
+  BothRenderers both(mesh, camera, frame);
+  FramePipeline& pipeline = both.Fast;
+  FramePipeline& shadowPipeline = both.FastShadows;
+  vtkCatadioptricRayTracer* tracer = both.Exact;
+  vtkCatadioptricRayTracer* shadowTracer = both.ExactShadows;
   std::vector<Timed> rows;
   AddRow(rows, "fast path (1 spot, gouraud, painter, iterative)", 0,
     [&](int f) { return pipeline.Frame(f); });
