@@ -79,6 +79,22 @@ struct RayScene::Internals
 
 namespace
 {
+// The hit Embree left in rh (no hit: a default Hit).
+RayScene::Hit HitOf(const RTCRayHit& rh)
+{
+  RayScene::Hit h;
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+  {
+    h.hit = true;
+    h.t = rh.ray.tfar;
+    h.mesh = rh.hit.geomID;
+    h.triangle = rh.hit.primID;
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+  }
+  return h;
+}
+
 // Finite points within kMaxCoordinate, and their bounds; else false with `error`.
 bool CheckPoints(const float* points, std::size_t n, Vec3& lo, Vec3& hi, std::string& error)
 {
@@ -347,17 +363,7 @@ RayScene::Hit RayScene::Intersect(
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(this->Internal->Scene, &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-  {
-    return result;
-  }
-  result.hit = true;
-  result.t = rh.ray.tfar;
-  result.mesh = rh.hit.geomID;
-  result.triangle = rh.hit.primID;
-  result.u = rh.hit.u;
-  result.v = rh.hit.v;
-  return result;
+  return HitOf(rh);
 }
 
 void RayScene::Intersect(std::size_t n, const Ray* rays, Hit* hits, bool coherent) const
@@ -399,18 +405,7 @@ void RayScene::Intersect(std::size_t n, const Ray* rays, Hit* hits, bool coheren
       this->Internal->Scene, &context, stream, static_cast<unsigned int>(m), sizeof(RTCRayHit));
     for (std::size_t i = 0; i < m; ++i)
     {
-      const RTCRayHit& rh = stream[i];
-      Hit& h = hits[first + i];
-      h = Hit();
-      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-      {
-        h.hit = true;
-        h.t = rh.ray.tfar;
-        h.mesh = rh.hit.geomID;
-        h.triangle = rh.hit.primID;
-        h.u = rh.hit.u;
-        h.v = rh.hit.v;
-      }
+      hits[first + i] = HitOf(stream[i]);
     }
   }
 }
