@@ -1,5 +1,5 @@
 // catadioptric-mirror-outline: a spherical mirror's centre (camera frame) from its outline in a
-// camera frame (Module/MirrorOutline.h).
+// camera frame (Module/Vision/MirrorOutline.h).
 //
 //   catadioptric-mirror-outline CALIBRATION IMAGE --radius R [-o OUT.yaml] [--overlay OUT.png]
 //

@@ -1,5 +1,5 @@
 // catadioptric-pose: the camera's world-to-camera pose from pixels of known world points
-// (Module/PoseEstimation.h).
+// (Module/Vision/PoseEstimation.h).
 //
 //   catadioptric-pose CALIBRATION POINTS.csv [-o OUT.yaml] [--threshold PX] [--seed N]
 //

@@ -231,6 +231,14 @@ void ShadeCells(
       }
     });
 }
+// The lit colours in place of any Colors array of the output's points and cells, in `to` (its
+// point or its cell data).
+void ReplaceColors(vtkPolyData* output, vtkDataArray* colors, vtkFieldData* to)
+{
+  output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
+  output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
+  to->AddArray(colors);
+}
 } // namespace
 
 struct vtkCatadioptricLighting::Internals
@@ -792,6 +800,45 @@ vtkMTimeType vtkCatadioptricLighting::GetMTime()
   return t;
 }
 
+bool vtkCatadioptricLighting::ShadowScene(
+  vtkPolyData* input, vtkInformationVector* occluderInputs, const catar::RayScene*& shadowScene)
+{
+  if (this->Occluders)
+  {
+    if (occluderInputs->GetNumberOfInformationObjects() > 0)
+    {
+      vtkErrorMacro("Occluders on input port 1 and shared occluders (SetOccluders) were both "
+                    "given: use one or the other.");
+      return false;
+    }
+    if (!this->Occluders->Update())
+    {
+      vtkErrorMacro("Cannot build the shared occluders' ray scene.");
+      return false;
+    }
+    shadowScene = &this->Occluders->GetRayScene();
+  }
+  else
+  {
+    std::vector<vtkPolyData*> meshes{ input };
+    for (int i = 0; i < occluderInputs->GetNumberOfInformationObjects(); ++i)
+    {
+      if (vtkPolyData* occluder = vtkPolyData::GetData(occluderInputs, i))
+      {
+        meshes.push_back(occluder);
+      }
+    }
+    std::string error;
+    if (!this->Internal->Update(meshes, error))
+    {
+      vtkErrorMacro("Cannot build the shadow ray scene: " << error);
+      return false;
+    }
+    shadowScene = &this->Internal->Scene;
+  }
+  return true;
+}
+
 int vtkCatadioptricLighting::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -802,10 +849,10 @@ int vtkCatadioptricLighting::RequestData(
     vtkErrorMacro("Input and output must be vtkPolyData.");
     return 0;
   }
-  std::string inputError;
-  if (!vtkCatadioptricMeshCheck::Check(input, inputError))
+  std::string error;
+  if (!vtkCatadioptricMeshCheck::Check(input, error))
   {
-    vtkErrorMacro("Bad input mesh: " << inputError);
+    vtkErrorMacro("Bad input mesh: " << error);
     return 0;
   }
   output->ShallowCopy(input);
@@ -837,14 +884,11 @@ int vtkCatadioptricLighting::RequestData(
   const double opacity = prop->GetOpacity();
   std::vector<catar::ShadingMaterial> materials;
   vtkDataArray* materialIndex = nullptr;
+  if (!vtkCatadioptricLightingSupport::ReadMaterials(
+        input, this->Emission, materials, materialIndex, error))
   {
-    std::string error;
-    if (!vtkCatadioptricLightingSupport::ReadMaterials(
-          input, this->Emission, materials, materialIndex, error))
-    {
-      vtkErrorMacro(<< error);
-      return 0;
-    }
+    vtkErrorMacro(<< error);
+    return 0;
   }
   const float solid[4] = { static_cast<float>(prop->GetDiffuseColor()[0]),
     static_cast<float>(prop->GetDiffuseColor()[1]), static_cast<float>(prop->GetDiffuseColor()[2]),
@@ -854,20 +898,12 @@ int vtkCatadioptricLighting::RequestData(
     vtkCatadioptricLightingSupport::ConvertLights(this->Lights);
   const catar::Vec3 globalAmbient = V3(this->GlobalAmbient);
   const int mode = this->ShadingMode;
-  std::string lightingError = catar::ValidateLighting(
-    lightList, material, globalAmbient, prop->GetAmbient(), prop->GetDiffuse(), opacity);
-  for (size_t m = 0; m < materials.size() && lightingError.empty(); ++m)
+  const catar::ShadingMaterial defaults{ material, prop->GetAmbient(), prop->GetDiffuse(),
+    opacity };
+  error = catar::ValidateShading(lightList, defaults, materials, globalAmbient);
+  if (!error.empty())
   {
-    lightingError = catar::ValidateLighting(lightList, materials[m].material, globalAmbient,
-      materials[m].ambientK, materials[m].diffuseK, materials[m].opacity);
-    if (!lightingError.empty())
-    {
-      lightingError = "material " + std::to_string(m) + ": " + lightingError;
-    }
-  }
-  if (!lightingError.empty())
-  {
-    vtkErrorMacro("Cannot shade: " << lightingError << ".");
+    vtkErrorMacro("Cannot shade: " << error << ".");
     return 0;
   }
   const catar::LightSet lights(lightList);
@@ -875,38 +911,9 @@ int vtkCatadioptricLighting::RequestData(
   // Shadows: the shared occluders, or the mesh's own triangles and those on port 1.
   const bool shadows = this->Shadows && mode != NONE && !lights.empty();
   const catar::RayScene* shadowScene = nullptr;
-  if (shadows && this->Occluders)
+  if (shadows && !this->ShadowScene(input, inputVector[1], shadowScene))
   {
-    if (inputVector[1]->GetNumberOfInformationObjects() > 0)
-    {
-      vtkErrorMacro("Occluders on input port 1 and shared occluders (SetOccluders) were both "
-                    "given: use one or the other.");
-      return 0;
-    }
-    if (!this->Occluders->Update())
-    {
-      vtkErrorMacro("Cannot build the shared occluders' ray scene.");
-      return 0;
-    }
-    shadowScene = &this->Occluders->GetRayScene();
-  }
-  else if (shadows)
-  {
-    std::vector<vtkPolyData*> meshes{ input };
-    for (int i = 0; i < inputVector[1]->GetNumberOfInformationObjects(); ++i)
-    {
-      if (vtkPolyData* occluder = vtkPolyData::GetData(inputVector[1], i))
-      {
-        meshes.push_back(occluder);
-      }
-    }
-    std::string error;
-    if (!this->Internal->Update(meshes, error))
-    {
-      vtkErrorMacro("Cannot build the shadow ray scene: " << error);
-      return 0;
-    }
-    shadowScene = &this->Internal->Scene;
+    return 0;
   }
   this->UpdateProgress(0.1);
 
@@ -914,7 +921,7 @@ int vtkCatadioptricLighting::RequestData(
   // in batches (ShadeBatch), one per thread.
   catar::ShadeBatch::Settings shading;
   shading.lights = &lights;
-  shading.defaults = { material, prop->GetAmbient(), prop->GetDiffuse(), opacity };
+  shading.defaults = defaults;
   shading.materials = &materials;
   shading.globalAmbient = globalAmbient;
   shading.baseColours = base.HasArray();
@@ -960,9 +967,7 @@ int vtkCatadioptricLighting::RequestData(
     const PointInputs pin{ points, visibleBytes, pointVisible, mirrorValues, mirror, normals,
       fallback, pointBase, base, materialIndex, pose };
     ShadePoints(pin, nPts, shading, out);
-    output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
-    output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
-    output->GetPointData()->AddArray(colors);
+    ReplaceColors(output, colors, output->GetPointData());
   }
   else
   {
@@ -977,9 +982,7 @@ int vtkCatadioptricLighting::RequestData(
     const CellInputs cin{ points, polys, first, visibleBytes, cellVisible, centroidMirror, base,
       materialIndex, materials, opacity, mode == FLAT, pose };
     ShadeCells(cin, shading, out);
-    output->GetPointData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
-    output->GetCellData()->RemoveArray(vtkCatadioptricArrayNames::Colors);
-    output->GetCellData()->AddArray(colors);
+    ReplaceColors(output, colors, output->GetCellData());
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -10,8 +10,8 @@
  *  - FLAT: cell data, one colour per cell, lit at the centroid with the face normal and seen from
  *    the centroid's own reflection point;
  *  - NONE: cell data, the unlit base colour (the paper's "blob").
- * The equation is in Module/Lighting.h (the paper's equation 12). Lights are vtkLights in world
- * coordinates: not positional = directional; positional with ConeAngle < 90 = spotlight (cone
+ * The equation is in Module/Shading/Lighting.h (the paper's equation 12). Lights are vtkLights in
+ * world coordinates: not positional = directional; positional with ConeAngle < 90 = spotlight (cone
  * half angle ConeAngle, Exponent, AttenuationValues); otherwise a point light. Colours are
  * multiplied by Intensity; lights switched off are ignored. The material is a vtkProperty:
  * Ka = Ambient * AmbientColor, Kd = Diffuse * DiffuseColor, Ks = Specular * SpecularColor,
@@ -60,6 +60,10 @@ class vtkFieldData;
 class vtkLight;
 class vtkLightCollection;
 class vtkProperty;
+namespace catar
+{
+class RayScene;
+}
 
 class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricLighting : public vtkPolyDataAlgorithm
 {
@@ -237,6 +241,12 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+  /// The scene that casts shadows: the shared occluders (SetOccluders), or the input's own
+  /// triangles and those on port 1 (occluderInputs), built or refitted here. False, with an error,
+  /// when both are given or the scene cannot be built.
+  bool ShadowScene(
+    vtkPolyData* input, vtkInformationVector* occluderInputs, const catar::RayScene*& shadowScene);
 };
 
 #endif

@@ -27,6 +27,7 @@
 #include <Eigen/Geometry> // cross products
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -49,6 +50,99 @@ struct alignas(64) VertexRecord
   double pixel[2]; // image coordinates
   float mirror[3]; // reflection point (camera frame): where the centroids' Newton starts
   unsigned char visible;
+};
+
+// The point arrays the projection writes (ImageCoordinates, MirrorPoint, PathLength,
+// ProjectionStatus, Visible), with the vertex records the cells read, filled point by point.
+struct PointOutputs
+{
+  explicit PointOutputs(vtkIdType n)
+    : Records(new VertexRecord[std::max<vtkIdType>(n, 1)])
+  {
+    this->Pixels->SetName(vtkCatadioptricArrayNames::ImageCoordinates);
+    this->Pixels->SetNumberOfComponents(2);
+    this->Mirror->SetName(vtkCatadioptricArrayNames::MirrorPoint);
+    this->Mirror->SetNumberOfComponents(3);
+    this->Path->SetName(vtkCatadioptricArrayNames::PathLength);
+    this->Status->SetName(vtkCatadioptricArrayNames::ProjectionStatus);
+    this->Visible->SetName(vtkCatadioptricArrayNames::Visible);
+    for (vtkDataArray* a : this->Arrays())
+    {
+      a->SetNumberOfTuples(n);
+    }
+    this->Bind();
+  }
+
+  std::array<vtkDataArray*, 5> Arrays()
+  {
+    return { this->Pixels.Get(), this->Mirror.Get(), this->Path.Get(), this->Status.Get(),
+      this->Visible.Get() };
+  }
+
+  // Point i: world position p, projected q.
+  void Store(vtkIdType i, const catar::Vec3& p, const catar::ProjectedPoint& q) const
+  {
+    this->Px[2 * i] = q.pixel.x();
+    this->Px[2 * i + 1] = q.pixel.y();
+    this->Mp[3 * i] = q.mirrorPoint.x();
+    this->Mp[3 * i + 1] = q.mirrorPoint.y();
+    this->Mp[3 * i + 2] = q.mirrorPoint.z();
+    this->Pl[i] = q.pathLength;
+    this->St[i] = static_cast<unsigned char>(q.status);
+    this->Vi[i] = catar::HasProjection(q.status) ? 1 : 0;
+    VertexRecord& r = this->Records[i];
+    std::copy(p.data(), p.data() + 3, r.point);
+    std::copy(q.pixel.data(), q.pixel.data() + 2, r.pixel);
+    for (int k = 0; k < 3; ++k)
+    {
+      r.mirror[k] = static_cast<float>(q.mirrorPoint[k]);
+    }
+    r.visible = this->Vi[i];
+  }
+
+  // Room for n points, the first `kept` points' values kept.
+  void Grow(vtkIdType kept, vtkIdType n)
+  {
+    for (vtkDataArray* a : this->Arrays())
+    {
+      a->Resize(n);
+      a->SetNumberOfTuples(n);
+    }
+    std::unique_ptr<VertexRecord[]> grown(new VertexRecord[n]);
+    std::copy(this->Records.get(), this->Records.get() + kept, grown.get());
+    this->Records.swap(grown);
+    this->Bind();
+  }
+
+  void AddTo(vtkPointData* pd)
+  {
+    for (vtkDataArray* a : this->Arrays())
+    {
+      pd->AddArray(a);
+    }
+  }
+
+  vtkNew<vtkDoubleArray> Pixels;
+  vtkNew<vtkDoubleArray> Mirror;
+  vtkNew<vtkDoubleArray> Path;
+  vtkNew<vtkUnsignedCharArray> Status;
+  vtkNew<vtkUnsignedCharArray> Visible;
+  std::unique_ptr<VertexRecord[]> Records;
+
+private:
+  void Bind()
+  {
+    this->Px = this->Pixels->GetPointer(0);
+    this->Mp = this->Mirror->GetPointer(0);
+    this->Pl = this->Path->GetPointer(0);
+    this->St = this->Status->GetPointer(0);
+    this->Vi = this->Visible->GetPointer(0);
+  }
+  double* Px = nullptr;
+  double* Mp = nullptr;
+  double* Pl = nullptr;
+  unsigned char* St = nullptr;
+  unsigned char* Vi = nullptr;
 };
 
 // How many cells ahead the cell loop asks for its vertices' records.
@@ -407,54 +501,16 @@ int vtkCatadioptricProjection::RequestData(
   camera->WriteToFieldData(output->GetFieldData());
 
   const vtkIdType nPts = input->GetNumberOfPoints();
-  vtkNew<vtkDoubleArray> pixels;
-  pixels->SetName(vtkCatadioptricArrayNames::ImageCoordinates);
-  pixels->SetNumberOfComponents(2);
-  pixels->SetNumberOfTuples(nPts);
-  vtkNew<vtkDoubleArray> mirror;
-  mirror->SetName(vtkCatadioptricArrayNames::MirrorPoint);
-  mirror->SetNumberOfComponents(3);
-  mirror->SetNumberOfTuples(nPts);
-  vtkNew<vtkDoubleArray> path;
-  path->SetName(vtkCatadioptricArrayNames::PathLength);
-  path->SetNumberOfTuples(nPts);
-  vtkNew<vtkUnsignedCharArray> status;
-  status->SetName(vtkCatadioptricArrayNames::ProjectionStatus);
-  status->SetNumberOfTuples(nPts);
-  vtkNew<vtkUnsignedCharArray> pvis;
-  pvis->SetName(vtkCatadioptricArrayNames::Visible);
-  pvis->SetNumberOfTuples(nPts);
-
   this->UpdateProgress(0.0);
-  std::unique_ptr<VertexRecord[]> records(new VertexRecord[std::max<vtkIdType>(nPts, 1)]);
+  PointOutputs out(nPts);
   if (nPts > 0)
   {
     const vtkCatadioptricPointReader points(input->GetPoints());
-    double* px = pixels->GetPointer(0);
-    double* mp = mirror->GetPointer(0);
-    double* pl = path->GetPointer(0);
-    unsigned char* st = status->GetPointer(0);
-    unsigned char* vi = pvis->GetPointer(0);
     vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
-      auto store = [&](vtkIdType i, const catar::Vec3& p, const catar::ProjectedPoint& q) {
-        px[2 * i] = q.pixel.x();
-        px[2 * i + 1] = q.pixel.y();
-        mp[3 * i] = q.mirrorPoint.x();
-        mp[3 * i + 1] = q.mirrorPoint.y();
-        mp[3 * i + 2] = q.mirrorPoint.z();
-        pl[i] = q.pathLength;
-        st[i] = static_cast<unsigned char>(q.status);
-        vi[i] = catar::HasProjection(q.status) ? 1 : 0;
-        VertexRecord& r = records[i];
-        std::copy(p.data(), p.data() + 3, r.point);
-        std::copy(q.pixel.data(), q.pixel.data() + 2, r.pixel);
-        for (int k = 0; k < 3; ++k)
-        {
-          r.mirror[k] = static_cast<float>(q.mirrorPoint[k]);
-        }
-        r.visible = vi[i];
-      };
-      catar::ProjectRun(projector, solver, begin, end, points, store);
+      catar::ProjectRun(projector, solver, begin, end, points,
+        [&](vtkIdType i, const catar::Vec3& p, const catar::ProjectedPoint& q) {
+          out.Store(i, p, q);
+        });
     });
   }
   this->UpdateProgress(0.5);
@@ -490,64 +546,36 @@ int vtkCatadioptricProjection::RequestData(
   {
     worker.NeedsFateCheck = &needsFateCheck;
     needsFateCheck = false;
-    cells = ProjectCells(input, worker, records.get());
+    cells = ProjectCells(input, worker, out.Records.get());
     worker.NeedsFateCheck = nullptr;
   }
   if (polys && needsFateCheck)
   {
     catar::Tessellation added;
     this->NumberOfSplitTriangles = vtkCatadioptricTessellatedMesh::Refine(input, projector,
-      worker.Tessellation, status->GetPointer(0), pixels->GetPointer(0), mirror->GetPointer(0),
-      added, output, refineFirst ? nullptr : &sources);
+      worker.Tessellation, out.Status->GetPointer(0), out.Pixels->GetPointer(0),
+      out.Mirror->GetPointer(0), added, output, refineFirst ? nullptr : &sources);
     if (this->NumberOfSplitTriangles > 0)
     {
       camera->WriteToFieldData(output->GetFieldData());
       const vtkIdType nNew = static_cast<vtkIdType>(added.points.size());
-      for (vtkDataArray* a : { static_cast<vtkDataArray*>(pixels.Get()),
-             static_cast<vtkDataArray*>(mirror.Get()), static_cast<vtkDataArray*>(path.Get()),
-             static_cast<vtkDataArray*>(status.Get()), static_cast<vtkDataArray*>(pvis.Get()) })
-      {
-        a->Resize(nPts + nNew);
-        a->SetNumberOfTuples(nPts + nNew);
-      }
-      std::unique_ptr<VertexRecord[]> grown(new VertexRecord[nPts + nNew]);
-      std::copy(records.get(), records.get() + nPts, grown.get());
+      out.Grow(nPts, nPts + nNew);
       for (vtkIdType k = 0; k < nNew; ++k)
       {
-        const catar::TessellatedPoint& p = added.points[k];
-        const catar::ProjectedPoint& q = p.projected;
-        const vtkIdType i = nPts + k;
-        pixels->SetTypedTuple(i, q.pixel.data());
-        mirror->SetTypedTuple(i, q.mirrorPoint.data());
-        path->SetValue(i, q.pathLength);
-        status->SetValue(i, static_cast<unsigned char>(q.status));
-        pvis->SetValue(i, catar::HasProjection(q.status) ? 1 : 0);
-        VertexRecord& r = grown[i];
-        std::copy(p.world.data(), p.world.data() + 3, r.point);
-        std::copy(q.pixel.data(), q.pixel.data() + 2, r.pixel);
-        for (int c = 0; c < 3; ++c)
-        {
-          r.mirror[c] = static_cast<float>(q.mirrorPoint[c]);
-        }
-        r.visible = pvis->GetValue(i);
+        out.Store(nPts + k, added.points[k].world, added.points[k].projected);
       }
-      records.swap(grown);
     }
   }
   if (refineFirst)
   {
-    cells = ProjectCells(this->NumberOfSplitTriangles > 0 ? output : input, worker, records.get());
+    cells =
+      ProjectCells(this->NumberOfSplitTriangles > 0 ? output : input, worker, out.Records.get());
   }
   else if (this->NumberOfSplitTriangles > 0)
   {
-    cells = ProjectPieces(output, worker, records.get(), cells, sources);
+    cells = ProjectPieces(output, worker, out.Records.get(), cells, sources);
   }
-  vtkPointData* pd = output->GetPointData();
-  pd->AddArray(pixels);
-  pd->AddArray(mirror);
-  pd->AddArray(path);
-  pd->AddArray(status);
-  pd->AddArray(pvis);
+  out.AddTo(output->GetPointData());
   vtkCellData* cd = output->GetCellData();
   cd->AddArray(cells.Depth);
   cd->AddArray(cells.Mirror);

@@ -36,56 +36,14 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// The camera. Takes precedence over CalibrationFileName.
-  void SetCamera(vtkCatadioptricCamera* camera);
-  vtkCatadioptricCamera* GetCamera();
-  ///@}
-
-  ///@{
-  /// A calibration file (YAML/JSON) to use when no camera object is set (e.g. from ParaView).
-  void SetCalibrationFileName(const char* fileName);
-  const char* GetCalibrationFileName();
-  ///@}
-
-  ///@{
-  /// A trajectory file (Documentation/file-formats.md: TUM or matrix poses) that moves the camera
-  /// over time: its poses' times are announced as the output's TIME_STEPS (ParaView's animation
-  /// plays them), and each update takes the pose at the time it asks for. Null or "" (the default):
-  /// the camera's own pose.
-  void SetTrajectoryFileName(const char* fileName);
-  const char* GetTrajectoryFileName();
-  ///@}
-
-  ///@{
-  /// A mirror in place of the camera's (ParaView's panel sets these): a type of
-  /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
-  /// that type's numbers in the order of its keys (Documentation/mirrors.md).
-  void SetMirrorType(const char* type);
-  const char* GetMirrorType();
-  void SetNumberOfMirrorParameters(int n);
-  void SetMirrorParameter(int i, double value);
-  int GetNumberOfMirrorParameters();
-  double GetMirrorParameter(int i);
-  ///@}
-
-  ///@{
-  /// The camera used when no camera object and no CalibrationFileName are set (ParaView's
-  /// panel): the built-in demo camera's values (Data/calibration/demo-camera.yaml) until changed.
-  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels;
-  /// Distortion k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by
-  /// row or a 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next
-  /// update that names the property.
-  void SetCameraImageSize(int width, int height);
-  void GetCameraImageSize(int size[2]);
-  void SetFocalLength(double fx, double fy);
-  void GetFocalLength(double f[2]);
-  void SetPrincipalPoint(double cx, double cy);
-  void GetPrincipalPoint(double c[2]);
-  void SetDistortion(double k1, double k2, double p1, double p2, double k3);
-  void GetDistortion(double coefficients[5]);
-  void SetWorldToCamera(const double elements[16]);
-  void SetWorldToCamera(const double matrix[4][4]);
-  void GetWorldToCamera(double elements[16]);
+  /// The camera (vtkCatadioptricCameraSlot.h): SetCamera (takes precedence), else
+  /// SetCalibrationFileName (a YAML/JSON calibration file), else the panel camera
+  /// (SetCameraImageSize, SetFocalLength, SetPrincipalPoint, SetDistortion, SetWorldToCamera: the
+  /// built-in demo camera's values until changed); SetMirrorType and SetMirrorParameter put
+  /// another mirror in the camera's place;
+  /// SetTrajectoryFileName moves the camera over time. Each with its getter.
+  vtkCatadioptricCameraSlotDeclareMacro();
+  vtkCatadioptricCameraSlotDeclareTrajectoryMacro();
   ///@}
 
   /// Solvers for the reflection point.
@@ -149,12 +107,7 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /// The camera to use for this execution (Camera, or one loaded from CalibrationFileName).
-  vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
-  /// ResolveCamera, and null with an error for a camera that is not valid.
-  vtkCatadioptricCamera* ResolveValidCamera(vtkInformation* outInfo = nullptr);
-
-  vtkCatadioptricCameraSlot CameraSlot;
+  vtkCatadioptricCameraSlotMembersMacro();
   int Solver = QUARTIC;
   bool BackFaceCulling = false;
   double BoundaryTolerance = 0.25;

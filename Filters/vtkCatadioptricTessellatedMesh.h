@@ -2,10 +2,10 @@
  * @class   vtkCatadioptricTessellatedMesh
  * @brief   a projected mesh with the triangles this frame's image needs split (private helper)
  *
- * vtkCatadioptricProjection's per-frame tessellation (Module/ImageTessellation.h): triangles that
- * cross the visibility boundary, and (adaptive) those whose edges bend more than a tolerance, are
- * replaced by their pieces; new points take point data interpolated from their input triangle's
- * vertices, pieces take their triangle's cell data. Not wrapped.
+ * vtkCatadioptricProjection's per-frame tessellation (Module/Projection/ImageTessellation.h):
+ * triangles that cross the visibility boundary, and (adaptive) those whose edges bend more than a
+ * tolerance, are replaced by their pieces; new points take point data interpolated from their input
+ * triangle's vertices, pieces take their triangle's cell data. Not wrapped.
  */
 #ifndef vtkCatadioptricTessellatedMesh_h
 #define vtkCatadioptricTessellatedMesh_h

@@ -119,6 +119,186 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
     });
   });
 }
+// The PathLength output: the depth buffer's rows (top first) in VTK's row order; a pixel never
+// drawn (infinite depth) is NaN.
+vtkSmartPointer<vtkFloatArray> PathLengthImage(const float* depth, int width, int height)
+{
+  const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
+  auto pathLength = vtkSmartPointer<vtkFloatArray>::New();
+  pathLength->SetName(vtkCatadioptricArrayNames::PathLength);
+  pathLength->SetNumberOfTuples(nPixels);
+  float* to = pathLength->GetPointer(0);
+  vtkCatadioptricParallel::For(0, height, 64, [&](vtkIdType y0, vtkIdType y1) {
+    for (vtkIdType y = y0; y < y1; ++y)
+    {
+      const float* row = depth + y * width;
+      float* outRow = to + (height - 1 - y) * width;
+      for (int x = 0; x < width; ++x)
+      {
+        outRow[x] = std::isinf(row[x]) ? std::numeric_limits<float>::quiet_NaN() : row[x];
+      }
+    }
+  });
+  return pathLength;
+}
+// The meshes to draw, their arrays checked (PathLength when wantPathLength; OriginalCellId when
+// wantIds; the colour array; the texture they name). False, with an error, when one lacks what it
+// needs.
+bool CollectMeshes(vtkObject* self, vtkInformationVector* meshInputs,
+  const std::vector<catar::TextureView>& textures, const std::vector<char>& opaqueTexture,
+  const char* colorArrayName, const float solid[4], bool wantPathLength, bool wantIds,
+  std::vector<vtkCatadioptricTriangleBins::Mesh>& meshes)
+{
+  for (int m = 0; m < meshInputs->GetNumberOfInformationObjects(); ++m)
+  {
+    vtkPolyData* mesh = vtkPolyData::GetData(meshInputs, m);
+    if (!mesh || mesh->GetNumberOfPolys() == 0)
+    {
+      continue;
+    }
+    vtkCatadioptricTriangleBins::Mesh in;
+    in.Data = mesh;
+    in.Key = m;
+    in.Pixels = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::ImageCoordinates);
+    in.Visible = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::Visible);
+    in.CentroidDepth = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::CentroidDepth);
+    if (!in.Pixels || in.Pixels->GetNumberOfComponents() != 2 || !in.Visible || !in.CentroidDepth)
+    {
+      vtkErrorWithObjectMacro(self,
+        "Mesh " << m
+                << " lacks ImageCoordinates/Visible/CentroidDepth: run "
+                   "vtkCatadioptricProjection first.");
+      return false;
+    }
+    // DEPTH_BUFFER and OutputPathLength: the per-vertex depth.
+    if (wantPathLength)
+    {
+      in.PathLength = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::PathLength);
+      if (!in.PathLength || in.PathLength->GetNumberOfComponents() != 1 ||
+        in.PathLength->GetNumberOfTuples() != mesh->GetNumberOfPoints())
+      {
+        vtkErrorWithObjectMacro(self,
+          "Mesh " << m
+                  << " has no PathLength point array (1 component, one value per "
+                     "point), which Visibility DEPTH_BUFFER and OutputPathLength "
+                     "need: run vtkCatadioptricProjection first.");
+        return false;
+      }
+    }
+    // OutputVisibleTriangle: the cells' original ids, when the mesh has them.
+    if (wantIds)
+    {
+      in.OriginalIds = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
+      if (in.OriginalIds &&
+        (in.OriginalIds->GetNumberOfComponents() != 1 ||
+          in.OriginalIds->GetNumberOfTuples() != mesh->GetNumberOfCells()))
+      {
+        vtkErrorWithObjectMacro(self,
+          "Mesh " << m
+                  << ": the cell array OriginalCellId must have 1 component and one "
+                     "value per cell.");
+        return false;
+      }
+    }
+    const vtkCatadioptricColorArray color(mesh, colorArrayName, solid);
+    if (color.HasArray() && color.GetNumberOfComponents() < 1)
+    {
+      vtkErrorWithObjectMacro(self, "Colour array " << colorArrayName << " has no components.");
+      return false;
+    }
+    // Texture: the one the mesh names in field data (TextureIndex), else the first, when the mesh
+    // has texture coordinates.
+    // A negative TextureIndex leaves the mesh untextured.
+    in.TCoords = textures.empty() ? nullptr : vtkCatadioptricImageSupport::TextureCoordinates(mesh);
+    if (in.TCoords)
+    {
+      in.Texture = 0;
+      std::string textureError;
+      if (!vtkCatadioptricImageSupport::TextureIndex(mesh, in.Texture, textureError))
+      {
+        vtkErrorWithObjectMacro(self, "Mesh " << m << ": " << textureError);
+        return false;
+      }
+      if (in.Texture < 0)
+      {
+        in.TCoords = nullptr;
+        in.Texture = -1;
+      }
+      else if (in.Texture >= static_cast<int>(textures.size()))
+      {
+        vtkErrorWithObjectMacro(self,
+          "Mesh " << m << " asks for texture " << in.Texture << " but " << textures.size()
+                  << " are connected.");
+        return false;
+      }
+      else
+      {
+        in.TextureOpaque = opaqueTexture[in.Texture] != 0;
+      }
+    }
+    meshes.push_back(in);
+  }
+
+  return true;
+}
+// The VisibleTriangle output (nPixels values, kept from the last execution when no one else holds
+// it), added to output, and where the rasteriser writes its ids: the array itself, or idCopy
+// where catar::RasterId is not vtkTypeInt64.
+catar::RasterId* IdImage(vtkSmartPointer<vtkTypeInt64Array>& kept, vtkImageData* output,
+  vtkIdType nPixels, vtkTypeInt64Array*& visibleTriangle, std::vector<catar::RasterId>& idCopy)
+{
+  visibleTriangle = KeptArray(kept, 1, nPixels);
+  visibleTriangle->SetName(vtkCatadioptricArrayNames::VisibleTriangle);
+  output->GetPointData()->AddArray(visibleTriangle);
+  if constexpr (std::is_same<vtkTypeInt64, catar::RasterId>::value)
+  {
+    return reinterpret_cast<catar::RasterId*>(visibleTriangle->GetPointer(0)); // same type
+  }
+  else
+  {
+    idCopy.resize(static_cast<size_t>(nPixels));
+    return idCopy.data();
+  }
+}
+
+// Antialias: redraws the edge pixels of the drawn image from samples (ids: the id buffer, VTK row
+// order), each sample's background from the frame (frameComponents a pixel) or the colour.
+// Returns the number of edge pixels.
+vtkIdType DrawEdges(vtkCatadioptricEdgeSamples& edges, const vtkCatadioptricTriangleBins& bins,
+  const catar::ImageView& view, catar::RasterId* ids,
+  const std::vector<catar::TextureView>& textures, const std::vector<char>& opaqueTexture,
+  const unsigned char* frameData, int frameComponents, const double* color, bool depthTest)
+{
+  const int width = view.width;
+  const int height = view.height;
+  edges.Draw(
+    view, TopRowFirst(ids, width, height), bins, textures, opaqueTexture,
+    [&](int x, int y, std::uint8_t rgba[4]) {
+      if (frameData)
+      {
+        const vtkIdType i = static_cast<vtkIdType>(height - 1 - y) * width + x; // VTK order
+        vtkCatadioptricImageSupport::CopyFramePixels(
+          frameData + i * frameComponents, frameComponents, 0, 1, rgba);
+      }
+      else
+      {
+        vtkCatadioptricImageSupport::FillColorPixels(color, 0, 1, rgba);
+      }
+    },
+    depthTest);
+  return edges.GetNumberOfEdgePixels();
+}
+
+// Whether each texture is opaque (catar::IsOpaque), when needed; all are taken as opaque when not.
+std::vector<char> OpaqueTextures(const std::vector<catar::TextureView>& textures, bool needed)
+{
+  std::vector<char> opaque(textures.size(), 1);
+  for (std::size_t t = 0; needed && t < textures.size(); ++t)
+  {
+    opaque[t] = catar::IsOpaque(textures[t]);
+  }
+  return opaque;
+}
 } // namespace
 
 vtkCatadioptricCompositor::vtkCatadioptricCompositor()
@@ -148,27 +328,13 @@ void vtkCatadioptricCompositor::ImageSizeWithoutFrame(
   size[1] = size[1] > 0 ? size[1] : std::max(1, this->LastSize[1]);
 }
 
-int vtkCatadioptricCompositor::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkCatadioptricCompositor::MeshImageSize(
+  vtkInformationVector* meshInputs, int& width, int& height)
 {
-  vtkImageData* output = vtkImageData::GetData(outputVector);
-  vtkImageData* frame = vtkImageData::GetData(inputVector[0]);
-  const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
-  const bool depthMode = this->Visibility == DEPTH_BUFFER;
-  const bool wantIds = this->OutputVisibleTriangle;
-  const bool wantDepths = this->OutputPathLength;
-  this->NumberOfDrawnTriangles = 0;
-  this->NumberOfSkippedTriangles = 0;
-  this->NumberOfEdgePixels = 0;
-  const int samples = this->Antialias ? this->AntialiasSamples : 1;
-
-  // Image size: from the meshes' cameras, which must agree with each other and with the frame.
-  int width = 0;
-  int height = 0;
   vtkNew<vtkCatadioptricCamera> camera;
-  for (int m = 0; m < nMeshes; ++m)
+  for (int m = 0; m < meshInputs->GetNumberOfInformationObjects(); ++m)
   {
-    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
+    vtkPolyData* mesh = vtkPolyData::GetData(meshInputs, m);
     if (!mesh)
     {
       continue;
@@ -177,7 +343,7 @@ int vtkCatadioptricCompositor::RequestData(
     if (!vtkCatadioptricMeshCheck::Check(mesh, meshError))
     {
       vtkErrorMacro("Mesh " << m << ": " << meshError);
-      return 0;
+      return false;
     }
     if (mesh->GetNumberOfPoints() == 0)
     {
@@ -186,7 +352,7 @@ int vtkCatadioptricCompositor::RequestData(
     if (!camera->ReadFromFieldData(mesh->GetFieldData()))
     {
       vtkErrorMacro("Mesh " << m << ": " << camera->GetLastError());
-      return 0;
+      return false;
     }
     if (width == 0)
     {
@@ -198,8 +364,31 @@ int vtkCatadioptricCompositor::RequestData(
       vtkErrorMacro("Mesh " << m << " was projected for a " << camera->GetImageWidth() << "x"
                             << camera->GetImageHeight() << " image, mesh 0 for " << width << "x"
                             << height << ".");
-      return 0;
+      return false;
     }
+  }
+  return true;
+}
+
+int vtkCatadioptricCompositor::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkImageData* frame = vtkImageData::GetData(inputVector[0]);
+  const bool depthMode = this->Visibility == DEPTH_BUFFER;
+  const bool wantIds = this->OutputVisibleTriangle;
+  const bool wantDepths = this->OutputPathLength;
+  this->NumberOfDrawnTriangles = 0;
+  this->NumberOfSkippedTriangles = 0;
+  this->NumberOfEdgePixels = 0;
+  const int samples = this->Antialias ? this->AntialiasSamples : 1;
+
+  // Image size: from the meshes' cameras, which must agree with each other and with the frame.
+  int width = 0;
+  int height = 0;
+  if (!this->MeshImageSize(inputVector[1], width, height))
+  {
+    return 0;
   }
   const int frameComponents = this->CheckFrame(frame, width, height);
   if (frameComponents < 0)
@@ -247,111 +436,16 @@ int vtkCatadioptricCompositor::RequestData(
     return 0;
   }
   // DEPTH_BUFFER and anti-aliasing: an RGBA texture is opaque when every alpha byte is 255.
-  std::vector<char> opaqueTexture(textures.size(), 1);
-  if (depthMode || samples > 1)
-  {
-    for (size_t t = 0; t < textures.size(); ++t)
-    {
-      const catar::TextureView& v = textures[t];
-      if (v.channels != 4)
-      {
-        continue;
-      }
-      const vtkIdType n = static_cast<vtkIdType>(v.width) * v.height;
-      for (vtkIdType i = 0; i < n && opaqueTexture[t]; ++i)
-      {
-        opaqueTexture[t] = v.data[4 * i + 3] == 255;
-      }
-    }
-  }
+  const std::vector<char> opaqueTexture = OpaqueTextures(textures, depthMode || samples > 1);
 
   // The meshes' arrays, checked here; the bins read them (in parallel, with typed access).
   std::vector<vtkCatadioptricTriangleBins::Mesh> meshes;
   const float solid[4] = { static_cast<float>(this->Color[0]), static_cast<float>(this->Color[1]),
     static_cast<float>(this->Color[2]), 1.0f };
-  for (int m = 0; m < nMeshes; ++m)
+  if (!CollectMeshes(this, inputVector[1], textures, opaqueTexture, this->ColorArrayName, solid,
+        depthMode || wantDepths, wantIds, meshes))
   {
-    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
-    if (!mesh || mesh->GetNumberOfPolys() == 0)
-    {
-      continue;
-    }
-    vtkCatadioptricTriangleBins::Mesh in;
-    in.Data = mesh;
-    in.Key = m;
-    in.Pixels = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::ImageCoordinates);
-    in.Visible = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::Visible);
-    in.CentroidDepth = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::CentroidDepth);
-    if (!in.Pixels || in.Pixels->GetNumberOfComponents() != 2 || !in.Visible || !in.CentroidDepth)
-    {
-      vtkErrorMacro("Mesh " << m
-                            << " lacks ImageCoordinates/Visible/CentroidDepth: run "
-                               "vtkCatadioptricProjection first.");
-      return 0;
-    }
-    // DEPTH_BUFFER and OutputPathLength: the per-vertex depth.
-    if (depthMode || wantDepths)
-    {
-      in.PathLength = mesh->GetPointData()->GetArray(vtkCatadioptricArrayNames::PathLength);
-      if (!in.PathLength || in.PathLength->GetNumberOfComponents() != 1 ||
-        in.PathLength->GetNumberOfTuples() != mesh->GetNumberOfPoints())
-      {
-        vtkErrorMacro("Mesh " << m
-                              << " has no PathLength point array (1 component, one value per "
-                                 "point), which Visibility DEPTH_BUFFER and OutputPathLength "
-                                 "need: run vtkCatadioptricProjection first.");
-        return 0;
-      }
-    }
-    // OutputVisibleTriangle: the cells' original ids, when the mesh has them.
-    if (wantIds)
-    {
-      in.OriginalIds = mesh->GetCellData()->GetArray(vtkCatadioptricArrayNames::OriginalCellId);
-      if (in.OriginalIds &&
-        (in.OriginalIds->GetNumberOfComponents() != 1 ||
-          in.OriginalIds->GetNumberOfTuples() != mesh->GetNumberOfCells()))
-      {
-        vtkErrorMacro("Mesh " << m
-                              << ": the cell array OriginalCellId must have 1 component and one "
-                                 "value per cell.");
-        return 0;
-      }
-    }
-    const vtkCatadioptricColorArray color(mesh, this->ColorArrayName, solid);
-    if (color.HasArray() && color.GetNumberOfComponents() < 1)
-    {
-      vtkErrorMacro("Colour array " << this->ColorArrayName << " has no components.");
-      return 0;
-    }
-    // Texture: the one the mesh names in field data (TextureIndex), else the first, when the mesh
-    // has texture coordinates.
-    // A negative TextureIndex leaves the mesh untextured.
-    in.TCoords = textures.empty() ? nullptr : vtkCatadioptricImageSupport::TextureCoordinates(mesh);
-    if (in.TCoords)
-    {
-      in.Texture = 0;
-      if (!vtkCatadioptricImageSupport::TextureIndex(mesh, in.Texture, textureError))
-      {
-        vtkErrorMacro("Mesh " << m << ": " << textureError);
-        return 0;
-      }
-      if (in.Texture < 0)
-      {
-        in.TCoords = nullptr;
-        in.Texture = -1;
-      }
-      else if (in.Texture >= static_cast<int>(textures.size()))
-      {
-        vtkErrorMacro("Mesh " << m << " asks for texture " << in.Texture << " but "
-                              << textures.size() << " are connected.");
-        return 0;
-      }
-      else
-      {
-        in.TextureOpaque = opaqueTexture[in.Texture] != 0;
-      }
-    }
-    meshes.push_back(in);
+    return 0;
   }
 
   // The triangles, in drawing order, binned into the bands they meet: painter order (cell
@@ -363,7 +457,7 @@ int vtkCatadioptricCompositor::RequestData(
   options.ColorArrayName = this->ColorArrayName;
   std::copy(solid, solid + 4, options.Solid);
   options.Opacity = static_cast<float>(this->Opacity);
-  options.MergeByDepth = nMeshes > 1;
+  options.MergeByDepth = inputVector[1]->GetNumberOfInformationObjects() > 1;
   options.DepthBuffer = depthMode;
   options.Depths = depthMode || wantDepths;
   options.Ids = wantIds || samples > 1; // edges are found on the ids
@@ -387,23 +481,9 @@ int vtkCatadioptricCompositor::RequestData(
   // Per-pixel ids: an int64 array in the colour image's (VTK) row order, written in place
   // (catar::RasterId is long long, as vtkTypeInt64; a platform where they differ gets a copy).
   std::vector<catar::RasterId> idCopy;
-  catar::RasterId* ids = nullptr;
   vtkTypeInt64Array* visibleTriangle = nullptr;
-  if (wantIds)
-  {
-    visibleTriangle = KeptArray(this->OutputIds, 1, nPixels);
-    visibleTriangle->SetName(vtkCatadioptricArrayNames::VisibleTriangle);
-    output->GetPointData()->AddArray(visibleTriangle);
-    if constexpr (std::is_same<vtkTypeInt64, catar::RasterId>::value)
-    {
-      ids = reinterpret_cast<catar::RasterId*>(visibleTriangle->GetPointer(0)); // same type
-    }
-    else
-    {
-      idCopy.resize(static_cast<size_t>(nPixels));
-      ids = idCopy.data();
-    }
-  }
+  catar::RasterId* ids =
+    wantIds ? IdImage(this->OutputIds, output, nPixels, visibleTriangle, idCopy) : nullptr;
   // The depth buffer is scratch memory kept between executions (allocating and first touching
   // it every frame costs more than the depth test itself on some systems).
   float* depth = nullptr;
@@ -420,23 +500,8 @@ int vtkCatadioptricCompositor::RequestData(
   DrawBands(view, *this->Bins, textures, background, depth, depthMode, ids);
   if (samples > 1)
   {
-    const double* color = this->BackgroundColor;
-    this->Edges->Draw(
-      view, TopRowFirst(ids, width, height), *this->Bins, textures, opaqueTexture,
-      [&](int x, int y, std::uint8_t rgba[4]) {
-        if (frameData)
-        {
-          const vtkIdType i = static_cast<vtkIdType>(height - 1 - y) * width + x; // VTK order
-          vtkCatadioptricImageSupport::CopyFramePixels(
-            frameData + i * frameComponents, frameComponents, 0, 1, rgba);
-        }
-        else
-        {
-          vtkCatadioptricImageSupport::FillColorPixels(color, 0, 1, rgba);
-        }
-      },
-      depthMode);
-    this->NumberOfEdgePixels = this->Edges->GetNumberOfEdgePixels();
+    this->NumberOfEdgePixels = DrawEdges(*this->Edges, *this->Bins, view, ids, textures,
+      opaqueTexture, frameData, frameComponents, this->BackgroundColor, depthMode);
   }
   if (!idCopy.empty())
   {
@@ -444,23 +509,7 @@ int vtkCatadioptricCompositor::RequestData(
   }
   if (wantDepths)
   {
-    // The depth buffer's rows, top first, into VTK's row order; never drawn (infinite): NaN.
-    vtkNew<vtkFloatArray> pathLength;
-    pathLength->SetName(vtkCatadioptricArrayNames::PathLength);
-    pathLength->SetNumberOfTuples(nPixels);
-    float* to = pathLength->GetPointer(0);
-    vtkCatadioptricParallel::For(0, height, 64, [&](vtkIdType y0, vtkIdType y1) {
-      for (vtkIdType y = y0; y < y1; ++y)
-      {
-        const float* row = depth + y * width;
-        float* outRow = to + (height - 1 - y) * width;
-        for (int x = 0; x < width; ++x)
-        {
-          outRow[x] = std::isinf(row[x]) ? std::numeric_limits<float>::quiet_NaN() : row[x];
-        }
-      }
-    });
-    output->GetPointData()->AddArray(pathLength);
+    output->GetPointData()->AddArray(PathLengthImage(depth, width, height));
   }
   this->UpdateProgress(1.0);
   return 1;

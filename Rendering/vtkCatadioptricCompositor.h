@@ -123,6 +123,9 @@ protected:
   /// (vtkCatadioptricCamera::IMAGE_SIZE, passed down by the filters in between), else the last
   /// size.
   void ImageSizeWithoutFrame(vtkInformationVector** inputVector, int size[2]) override;
+  /// The image size of the meshes' cameras (field data), which must agree; 0 x 0 without a mesh
+  /// that has points. False, with an error, for a mesh that fails its checks or a disagreement.
+  bool MeshImageSize(vtkInformationVector* meshInputs, int& width, int& height);
 
   int Visibility = PAINTER;
   bool Antialias = false;

@@ -483,6 +483,60 @@ std::string UpdateTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting
   }
   return std::string();
 }
+// The meshes to trace, one a port-1 input (an empty one for a missing input), each made again
+// only where it changed (entries keep them between executions), lit with the tracer's
+// SetMeshLighting or the lighting recorded in the mesh; the scene's lights gathered in
+// sceneLighting. False, with an error, when a mesh cannot be used.
+bool UpdateMeshes(vtkCatadioptricRayTracer* self, vtkInformationVector* meshInputs,
+  const MeshSettings& settings, std::vector<MeshEntry>& entries,
+  std::vector<std::shared_ptr<const catar::TraceMesh>>& meshes, SceneLighting& sceneLighting)
+{
+  const int nMeshes = meshInputs->GetNumberOfInformationObjects();
+  entries.resize(static_cast<std::size_t>(nMeshes));
+  meshes.assign(static_cast<std::size_t>(nMeshes), nullptr);
+  for (int m = 0; m < nMeshes; ++m)
+  {
+    MeshEntry& entry = entries[static_cast<std::size_t>(m)];
+    vtkPolyData* mesh = vtkPolyData::GetData(meshInputs, m);
+    if (!mesh)
+    {
+      if (!entry.Trace || entry.HasMesh)
+      {
+        entry = MeshEntry();
+        entry.Trace = std::make_shared<catar::TraceMesh>();
+      }
+      meshes[static_cast<std::size_t>(m)] = entry.Trace;
+      continue;
+    }
+    // SetMeshLighting's, else the lighting recorded by the lighting filter that made the mesh.
+    vtkCatadioptricLighting* lighting = self->GetMeshLighting(m);
+    vtkSmartPointer<vtkCatadioptricLighting> recorded;
+    if (!lighting && self->GetUseInputLighting() &&
+      vtkCatadioptricLighting::HasLightingRecord(mesh->GetFieldData()))
+    {
+      recorded = vtkSmartPointer<vtkCatadioptricLighting>::New();
+      if (!recorded->ReadFromFieldData(mesh->GetFieldData()))
+      {
+        vtkErrorWithObjectMacro(self,
+          "Mesh " << m
+                  << " has a malformed lighting record (field data LightingSettings, "
+                     "LightingLights, LightingColorArray): turn UseInputLighting off "
+                     "or light it again with vtkCatadioptricLighting.");
+        return false;
+      }
+      lighting = recorded;
+    }
+    const std::string error = UpdateTraceMesh(mesh, lighting, settings, entry, sceneLighting);
+    if (!error.empty())
+    {
+      entry = MeshEntry();
+      vtkErrorWithObjectMacro(self, "Mesh " << m << error);
+      return false;
+    }
+    meshes[static_cast<std::size_t>(m)] = entry.Trace;
+  }
+  return true;
+}
 } // namespace
 
 int vtkCatadioptricRayTracer::RequestInformation(
@@ -560,48 +614,10 @@ int vtkCatadioptricRayTracer::RequestData(
   SceneLighting sceneLighting;
   const MeshSettings settings{ this->Color, this->Opacity, this->ColorArrayName,
     this->OutputVisibleTriangle, textures.size() };
-  const int nMeshes = inputVector[1]->GetNumberOfInformationObjects();
-  in.Meshes.resize(static_cast<std::size_t>(nMeshes));
-  std::vector<std::shared_ptr<const catar::TraceMesh>> meshes(static_cast<std::size_t>(nMeshes));
-  for (int m = 0; m < nMeshes; ++m)
+  std::vector<std::shared_ptr<const catar::TraceMesh>> meshes;
+  if (!UpdateMeshes(this, inputVector[1], settings, in.Meshes, meshes, sceneLighting))
   {
-    MeshEntry& entry = in.Meshes[static_cast<std::size_t>(m)];
-    vtkPolyData* mesh = vtkPolyData::GetData(inputVector[1], m);
-    if (!mesh)
-    {
-      if (!entry.Trace || entry.HasMesh)
-      {
-        entry = MeshEntry();
-        entry.Trace = std::make_shared<catar::TraceMesh>();
-      }
-      meshes[static_cast<std::size_t>(m)] = entry.Trace;
-      continue;
-    }
-    // SetMeshLighting's, else the lighting recorded by the lighting filter that made the mesh.
-    vtkCatadioptricLighting* lighting = this->GetMeshLighting(m);
-    vtkSmartPointer<vtkCatadioptricLighting> recorded;
-    if (!lighting && this->UseInputLighting &&
-      vtkCatadioptricLighting::HasLightingRecord(mesh->GetFieldData()))
-    {
-      recorded = vtkSmartPointer<vtkCatadioptricLighting>::New();
-      if (!recorded->ReadFromFieldData(mesh->GetFieldData()))
-      {
-        vtkErrorMacro("Mesh " << m
-                              << " has a malformed lighting record (field data LightingSettings, "
-                                 "LightingLights, LightingColorArray): turn UseInputLighting off "
-                                 "or light it again with vtkCatadioptricLighting.");
-        return 0;
-      }
-      lighting = recorded;
-    }
-    const std::string error = UpdateTraceMesh(mesh, lighting, settings, entry, sceneLighting);
-    if (!error.empty())
-    {
-      entry = MeshEntry();
-      vtkErrorMacro("Mesh " << m << error);
-      return 0;
-    }
-    meshes[static_cast<std::size_t>(m)] = entry.Trace;
+    return 0;
   }
   this->UpdateProgress(0.1);
 

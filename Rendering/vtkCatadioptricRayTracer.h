@@ -5,12 +5,12 @@
  * The ground truth the fast path (projection, lighting, painter sort, compositor) is measured
  * against, and a rendering mode for users who want accuracy over speed. For every pixel (with
  * Samples x Samples supersampling), the pixel is back-projected, reflected off the spherical
- * mirror, and the reflected ray is intersected with the meshes (Embree, Module/RayTracer.h). The
- * hit point is shaded with the same Core equation as vtkCatadioptricLighting, but exactly: the
- * viewer is the pixel's own mirror point, the normal is the face normal (FLAT) or the vertex
- * normals interpolated at the hit (GOURAUD: per-pixel, where the fast path interpolates vertex
- * colours), shadows are traced by shadow rays against every mesh, base colours and texture
- * coordinates are interpolated at the hit.
+ * mirror, and the reflected ray is intersected with the meshes (Embree,
+ * Module/Reference/RayTracer.h). The hit point is shaded with the same Core equation as
+ * vtkCatadioptricLighting, but exactly: the viewer is the pixel's own mirror point, the normal is
+ * the face normal (FLAT) or the vertex normals interpolated at the hit (GOURAUD: per-pixel, where
+ * the fast path interpolates vertex colours), shadows are traced by shadow rays against every mesh,
+ * base colours and texture coordinates are interpolated at the hit.
  *
  * Same inputs and output as vtkCatadioptricCompositor, so the two images compare pixel by pixel:
  * port 0 (optional) the camera frame; port 1 (repeatable) the meshes in world coordinates (the
@@ -70,52 +70,14 @@ public:
   // OutputVisibleTriangle: vtkCatadioptricImageSink.
 
   ///@{
-  /// The camera; takes precedence over CalibrationFileName.
-  void SetCamera(vtkCatadioptricCamera* camera);
-  vtkCatadioptricCamera* GetCamera();
-  void SetCalibrationFileName(const char* fileName);
-  const char* GetCalibrationFileName();
-  ///@}
-
-  ///@{
-  /// A trajectory file (Documentation/file-formats.md: TUM or matrix poses) that moves the camera
-  /// over time: its poses' times are announced as the output's TIME_STEPS (ParaView's animation
-  /// plays them), and each update takes the pose at the time it asks for. Null or "" (the default):
-  /// the camera's own pose.
-  void SetTrajectoryFileName(const char* fileName);
-  const char* GetTrajectoryFileName();
-  ///@}
-
-  ///@{
-  /// A mirror in place of the camera's (ParaView's panel sets these): a type of
-  /// vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
-  /// that type's numbers in the order of its keys (Documentation/mirrors.md).
-  void SetMirrorType(const char* type);
-  const char* GetMirrorType();
-  void SetNumberOfMirrorParameters(int n);
-  void SetMirrorParameter(int i, double value);
-  int GetNumberOfMirrorParameters();
-  double GetMirrorParameter(int i);
-  ///@}
-
-  ///@{
-  /// The camera used when no camera object and no CalibrationFileName are set (ParaView's
-  /// panel): the built-in demo camera's values (Data/calibration/demo-camera.yaml) until changed.
-  /// CameraImageSize in pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels;
-  /// Distortion k1, k2, p1, p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by
-  /// row or a 4x4 matrix (from Python, a 4x4 numpy array). A bad value is an error at the next
-  /// update that names the property.
-  void SetCameraImageSize(int width, int height);
-  void GetCameraImageSize(int size[2]);
-  void SetFocalLength(double fx, double fy);
-  void GetFocalLength(double f[2]);
-  void SetPrincipalPoint(double cx, double cy);
-  void GetPrincipalPoint(double c[2]);
-  void SetDistortion(double k1, double k2, double p1, double p2, double k3);
-  void GetDistortion(double coefficients[5]);
-  void SetWorldToCamera(const double elements[16]);
-  void SetWorldToCamera(const double matrix[4][4]);
-  void GetWorldToCamera(double elements[16]);
+  /// The camera (vtkCatadioptricCameraSlot.h): SetCamera (takes precedence), else
+  /// SetCalibrationFileName (a YAML/JSON calibration file), else the panel camera
+  /// (SetCameraImageSize, SetFocalLength, SetPrincipalPoint, SetDistortion, SetWorldToCamera: the
+  /// built-in demo camera's values until changed); SetMirrorType and SetMirrorParameter put
+  /// another mirror in the camera's place;
+  /// SetTrajectoryFileName moves the camera over time. Each with its getter.
+  vtkCatadioptricCameraSlotDeclareMacro();
+  vtkCatadioptricCameraSlotDeclareTrajectoryMacro();
   ///@}
 
   ///@{
@@ -173,9 +135,7 @@ protected:
   /// ImageSize, else the camera's image size.
   void ImageSizeWithoutFrame(vtkInformationVector** inputVector, int size[2]) override;
 
-  vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);
-
-  vtkCatadioptricCameraSlot CameraSlot;
+  vtkCatadioptricCameraSlotMembersMacro();
   int Samples = 1;
   bool UseInputLighting = true;
   vtkIdType NumberOfMirrorRays = 0;

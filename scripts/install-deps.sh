@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian packages CatadioptricAR needs (ParaView 5.11's SDK with its VTK 9.2, CGAL,
 # Eigen, OpenCV, OpenMesh, GoogleTest, Google Benchmark, Embree, yaml-cpp, OpenGV, Ceres, CLI11,
-# Xvfb; for the tests, Python's numpy, PIL, yaml and jsonschema).
+# Xvfb; clang-format and clang-tidy; for the tests, Python's numpy, PIL, yaml and jsonschema).
 #   scripts/install-deps.sh               install (runs apt-get update first)
 #   scripts/install-deps.sh --if-missing  do nothing when everything is already installed
 # Never install libvtk9-dev or python3-vtk9: they conflict with paraview-dev.
 set -euo pipefail
-packages=(build-essential cmake git pkg-config clang-format
+packages=(build-essential cmake git pkg-config clang-format clang-tidy
   paraview paraview-dev python3-paraview qtbase5-dev qttools5-dev libqt5svg5-dev
   libqt5opengl5-dev qtxmlpatterns5-dev-tools libqt5x11extras5-dev
   libcgal-dev libeigen3-dev libopencv-dev libopencv-contrib-dev libopenmesh-dev libgtest-dev

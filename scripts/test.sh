@@ -4,7 +4,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh --if-missing
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+# CI (CI=true) builds with warnings as errors (CATAR_WERROR).
+werror=OFF
+if [[ -n "${CI:-}" ]]; then werror=ON; fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCATAR_WERROR="$werror"
 cmake --build build -j "$(nproc)"
 export VTK_SMP_BACKEND_IN_USE=STDThread
 cd build

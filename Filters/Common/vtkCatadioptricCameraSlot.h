@@ -126,6 +126,72 @@ private:
 };
 
 /**
+ * Declares, in the public section of an algorithm's class, the camera members that
+ * vtkCatadioptricCameraSlotMacro defines (the one copy of these declarations; VTK's Python and
+ * ParaView wrappers expand the macro, so every algorithm that uses it has each member):
+ *  - SetCamera / GetCamera: the camera object; takes precedence over the file and the panel.
+ *  - SetCalibrationFileName / GetCalibrationFileName: a calibration file (YAML/JSON) used when no
+ *    camera object is set (e.g. from ParaView).
+ *  - SetMirrorType, SetNumberOfMirrorParameters, SetMirrorParameter and their getters: a mirror in
+ *    place of the camera's (ParaView's panel sets these): a type of
+ *    vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
+ *    that type's numbers in the order of its keys (Documentation/mirrors.md).
+ *  - The panel camera, used when no camera object and no calibration file are set: the built-in
+ *    demo camera's values (Data/calibration/demo-camera.yaml) until changed. CameraImageSize in
+ *    pixels; FocalLength (fx, fy) and PrincipalPoint (cx, cy) in pixels; Distortion k1, k2, p1,
+ *    p2, k3 (OpenCV's order); WorldToCamera, the pose, as 16 numbers row by row or a 4x4 matrix
+ *    (from Python, a 4x4 numpy array). A bad value is an error at the next update that names the
+ *    property.
+ * Use it as `vtkCatadioptricCameraSlotDeclareMacro();`.
+ */
+#define vtkCatadioptricCameraSlotDeclareMacro()                                                    \
+  void SetCamera(vtkCatadioptricCamera* camera);                                                   \
+  vtkCatadioptricCamera* GetCamera();                                                              \
+  void SetCalibrationFileName(const char* fileName);                                               \
+  const char* GetCalibrationFileName();                                                            \
+  void SetMirrorType(const char* type);                                                            \
+  const char* GetMirrorType();                                                                     \
+  void SetNumberOfMirrorParameters(int n);                                                         \
+  void SetMirrorParameter(int i, double value);                                                    \
+  int GetNumberOfMirrorParameters();                                                               \
+  double GetMirrorParameter(int i);                                                                \
+  void SetCameraImageSize(int width, int height);                                                  \
+  void GetCameraImageSize(int size[2]);                                                            \
+  void SetFocalLength(double fx, double fy);                                                       \
+  void GetFocalLength(double f[2]);                                                                \
+  void SetPrincipalPoint(double cx, double cy);                                                    \
+  void GetPrincipalPoint(double c[2]);                                                             \
+  void SetDistortion(double k1, double k2, double p1, double p2, double k3);                       \
+  void GetDistortion(double coefficients[5]);                                                      \
+  void SetWorldToCamera(const double elements[16]);                                                \
+  void SetWorldToCamera(const double matrix[4][4]);                                                \
+  void GetWorldToCamera(double elements[16])
+
+/**
+ * Declares, in the public section, SetTrajectoryFileName and GetTrajectoryFileName
+ * (vtkCatadioptricCameraSlotTrajectoryMacro defines them): a trajectory file
+ * (Documentation/file-formats.md: TUM or matrix poses) that moves the camera over time: its poses'
+ * times are announced as the output's TIME_STEPS (ParaView's animation plays them), and each
+ * update takes the pose at the time it asks for. Null or "" (the default): the camera's own pose.
+ * Use it as `vtkCatadioptricCameraSlotDeclareTrajectoryMacro();`.
+ */
+#define vtkCatadioptricCameraSlotDeclareTrajectoryMacro()                                          \
+  void SetTrajectoryFileName(const char* fileName);                                                \
+  const char* GetTrajectoryFileName()
+
+/**
+ * Declares, in the protected section, the slot itself (`CameraSlot`), ResolveCamera(outInfo) (the
+ * camera to use for this execution: the object, the file's or the panel's, at the time outInfo
+ * asks for) and ResolveValidCamera(outInfo) (the same, and null with an error for a camera that is
+ * not valid; defined by vtkCatadioptricCameraSlotValidMacro). Use it as
+ * `vtkCatadioptricCameraSlotMembersMacro();`.
+ */
+#define vtkCatadioptricCameraSlotMembersMacro()                                                    \
+  vtkCatadioptricCamera* ResolveCamera(vtkInformation* outInfo = nullptr);                         \
+  vtkCatadioptricCamera* ResolveValidCamera(vtkInformation* outInfo = nullptr);                    \
+  vtkCatadioptricCameraSlot CameraSlot
+
+/**
  * Defines, in a .cxx, the mirror override of an algorithm that holds a
  * `vtkCatadioptricCameraSlot CameraSlot`: SetMirrorType, SetNumberOfMirrorParameters,
  * SetMirrorParameter and their getters (part of vtkCatadioptricCameraSlotMacro).

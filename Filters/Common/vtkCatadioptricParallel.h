@@ -2,8 +2,8 @@
  * @class   vtkCatadioptricParallel
  * @brief   parallel loops on a pool of threads that outlive the loop: the project's one policy
  *
- * Every parallel loop of the project runs on Core's pool (Module/Parallel.h: threads made once and
- * kept waiting between loops; VTK 9.2's STDThread backend starts and joins its threads inside
+ * Every parallel loop of the project runs on Core's pool (Module/Base/Parallel.h: threads made once
+ * and kept waiting between loops; VTK 9.2's STDThread backend starts and joins its threads inside
  * every vtkSMPTools::For, about 0.13 ms a loop on two cores, a tenth of a 10 ms frame). This class
  * is the VTK side of it: the filters' loops, with the thread count VTK's settings give.
  *

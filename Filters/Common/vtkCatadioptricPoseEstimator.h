@@ -2,7 +2,7 @@
  * @class   vtkCatadioptricPoseEstimator
  * @brief   the camera's pose from pixels of known world points (generalized absolute pose)
  *
- * VTK's face of catar::EstimatePose (Module/PoseEstimation.h;
+ * VTK's face of catar::EstimatePose (Module/Vision/PoseEstimation.h;
  * Documentation/pose-from-the-image.md): given a camera (intrinsics, distortion, mirror) and, for N
  * known world points, the pixels where the image shows them, finds the world-to-camera pose. Each
  * pixel's reflected ray must pass through its point: OpenGV's GP3P in RANSAC, inliers by the pixel

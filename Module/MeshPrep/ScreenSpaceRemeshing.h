@@ -43,7 +43,7 @@ struct ScreenSpaceOptions
   /// Refinement stops at this many triangles (a warning says so; maxError tells what was
   /// reached), a guard against unreachable tolerances.
   std::size_t maxTriangles = 4000000;
-  /// Threads of the edge-bend loops (Core's pool, Module/Parallel.h); < 1: its default, the
+  /// Threads of the edge-bend loops (Core's pool, Module/Base/Parallel.h); < 1: its default, the
   /// hardware's. vtkCatadioptricRemesher passes VTK's (vtkCatadioptricParallel).
   int threads = 0;
   ProgressFunction progress = nullptr;

@@ -3,7 +3,7 @@
 #ifndef catarTriangleMesh_h
 #define catarTriangleMesh_h
 
-#include "CameraModel.h" // Vec3
+#include "Types.h"
 
 #include <Eigen/Geometry> // Vec3::cross
 

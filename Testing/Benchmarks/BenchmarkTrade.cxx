@@ -13,7 +13,7 @@
 //     ray scene kept from frame to frame: only the lights move), shown with error 0 by definition
 //     (it is what every row is measured against), and its 1-ray-per-pixel image measured against
 //     its own 8 x 8 rays per pixel (the anti-aliasing rows' reference).
-// Accuracy (Core catar::CompareImages, Module/ImageMetrics.h): silhouette IoU, mean and max
+// Accuracy (Core catar::CompareImages, Module/Metrics/ImageMetrics.h): silhouette IoU, mean and max
 // (Hausdorff) distance between the silhouette boundaries in pixels, PSNR of RGB over the union of
 // the silhouettes (dB), SSIM of the luminance over the object's box, and, on the input mesh,
 // the pixels whose visible triangle differs from the reference's. The object is the Stanford

@@ -1,7 +1,7 @@
-// Per-frame tessellation (Module/ImageTessellation.h) against the exact projection: every point
-// of an input triangle that the camera sees lands inside the drawn pieces (to the tolerances),
-// every piece is seen, the pieces' edges bend no more than the tolerance, new points lie where
-// their barycentric weights say.
+// Per-frame tessellation (Module/Projection/ImageTessellation.h) against the exact projection:
+// every point of an input triangle that the camera sees lands inside the drawn pieces (to the
+// tolerances), every piece is seen, the pieces' edges bend no more than the tolerance, new points
+// lie where their barycentric weights say.
 #include "EdgeBend.h"
 #include "ImageTessellation.h"
 #include "Projector.h"

@@ -1,4 +1,4 @@
-// Phong lighting (Module/Lighting.h) on single points: analytic checks of each term.
+// Phong lighting (Module/Shading/Lighting.h) on single points: analytic checks of each term.
 #include "Lighting.h"
 
 #include <Eigen/Geometry>

@@ -241,11 +241,11 @@ TEST(vtkCatadioptricLighting, UnprojectedInputIsAnError)
 
 namespace
 {
-// Lambert + Phong at one point, written out here from the equation of Module/Lighting.h (not
-// with Core's Shade): toLight is the unit vector to the light, att its attenuation, the light's
-// colour both diffuse and specular, no light ambient, no emission; the normal is turned towards
-// the viewer (two-sided lighting). Material: ambient factor ka (ambient colour white), diffuse
-// factor kd times diffuseColor, specular factor ks (white), shininess.
+// Lambert + Phong at one point, written out here from the equation of Module/Shading/Lighting.h
+// (not with Core's Shade): toLight is the unit vector to the light, att its attenuation, the
+// light's colour both diffuse and specular, no light ambient, no emission; the normal is turned
+// towards the viewer (two-sided lighting). Material: ambient factor ka (ambient colour white),
+// diffuse factor kd times diffuseColor, specular factor ks (white), shininess.
 struct HandMaterial
 {
   double ka, kd, ks, shininess;

@@ -1,4 +1,4 @@
-// Markers (Module/Markers.h) drawn by the project's own renderer and found again through the
+// Markers (Module/Vision/Markers.h) drawn by the project's own renderer and found again through the
 // mirror: the detected corners lie where the exact forward projection puts the board's corners,
 // and the pose from them is the camera's true pose (the scene's); a sequence re-estimated from
 // rendered marker frames tracks its trajectory.

@@ -1,5 +1,5 @@
-// A spherical mirror's centre from its outline (Module/MirrorOutline.h): the closed form on exact
-// and noisy outlines, detection in rendered frames, bad inputs, and the program.
+// A spherical mirror's centre from its outline (Module/Vision/MirrorOutline.h): the closed form on
+// exact and noisy outlines, detection in rendered frames, bad inputs, and the program.
 #include "CalibrationIO.h"
 #include "Environment.h"
 #include "MirrorOutline.h"

@@ -1,4 +1,5 @@
-// Module/Polygons.h against closed forms, and ProjectRun (Projector.h) against one point at a time.
+// Module/Base/Polygons.h against closed forms, and ProjectRun (Projector.h) against one point at a
+// time.
 #include "Polygons.h"
 #include "Projector.h"
 #include "TestCameras.h"

@@ -1,5 +1,5 @@
-// Quadric mirrors (Module/QuadricMirror.h) against independent oracles: the surface's equation,
-// the law of reflection, back projection, the closed-form sphere, the hyperboloid's foci.
+// Quadric mirrors (Module/Mirror/QuadricMirror.h) against independent oracles: the surface's
+// equation, the law of reflection, back projection, the closed-form sphere, the hyperboloid's foci.
 #include "CalibrationIO.h"
 #include "Mirror.h"
 #include "Projector.h"

@@ -1,4 +1,4 @@
-// The .vtp check (Module/VtpFileCheck.cxx) against VTK's own writer and reader: every file
+// The .vtp check (Module/IO/VtpFileCheck.cxx) against VTK's own writer and reader: every file
 // vtkXMLPolyDataWriter makes (ASCII, inline binary, appended raw and base64; no compression,
 // zlib, LZ4, LZMA; 32- and 64-bit headers; verts, lines, strips, polygons, point, cell and field
 // data, string and bit arrays) passes and reads back whole; files whose counts, block tables or

@@ -1,7 +1,6 @@
 #include "Markers.h"
 
 #include "ConfigReader.h"
-#include "Trajectory.h"
 
 #include <Eigen/Geometry>
 #include <opencv2/aruco.hpp>

@@ -110,15 +110,6 @@ struct Keyframes
   /// one, a position not finite, a rotation not finite or not of unit norm (within 1e-6).
   std::string Validate() const;
 };
-
-/// Slerp of two unit quaternions taking the short way (q and -q are the same rotation); exact at
-/// s = 0 (a) and s = 1 (b, or -b when that is nearer a); stable when they are nearly equal (falls
-/// back to normalised lerp below ~1e-6 rad). The result is normalised.
-Eigen::Quaterniond Slerp(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b, double s);
-
-/// The rotation of a scene object's `rotate` (degrees about x, then y, then z, as the object's
-/// transform applies them): Rz Ry Rx. Keyframes, objects and markers share it.
-Eigen::Quaterniond RotationFromDegrees(const Vec3& degrees);
 } // namespace catar
 
 #endif

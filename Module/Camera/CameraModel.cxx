@@ -9,26 +9,6 @@
 
 namespace catar
 {
-const char* ToString(ProjectionStatus status)
-{
-  switch (status)
-  {
-    case ProjectionStatus::Valid:
-      return "valid";
-    case ProjectionStatus::OutsideImage:
-      return "outside-image";
-    case ProjectionStatus::InsideMirror:
-      return "inside-mirror";
-    case ProjectionStatus::HiddenByMirror:
-      return "hidden-by-mirror";
-    case ProjectionStatus::NoReflection:
-      return "no-reflection";
-    case ProjectionStatus::InvalidInput:
-      return "invalid-input";
-  }
-  return "unknown";
-}
-
 std::string CameraModel::Validate() const
 {
   std::ostringstream err;

@@ -140,6 +140,10 @@ struct TextureView
   }
 };
 
+/// True when the texture hides what is behind it everywhere: 1 or 3 channels, or RGBA with every
+/// alpha byte 255.
+bool IsOpaque(const TextureView& texture);
+
 /// One vertex: position in pixels (pixel (0,0) is the CENTRE of the top-left pixel), colour RGBA
 /// in [0, 1] (clamped), depth (smaller is nearer) and texture coordinates.
 struct RasterVertex

@@ -891,4 +891,24 @@ bool rasterizeSamples(const ImageView& block, const SnappedTriangle& t, int x, i
     block, local, PixelRect{ 0, 0, samples, samples }, depth, texture, nullptr, 0);
   return true;
 }
+
+bool IsOpaque(const TextureView& texture)
+{
+  if (texture.channels != 4)
+  {
+    return true;
+  }
+  for (int j = 0; j < texture.height; ++j)
+  {
+    const std::uint8_t* row = texture.texel(0, j);
+    for (int i = 0; i < texture.width; ++i)
+    {
+      if (row[4 * i + 3] != 255)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
 }
+} // namespace catar

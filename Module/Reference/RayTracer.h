@@ -20,10 +20,10 @@
 #ifndef catarRayTracer_h
 #define catarRayTracer_h
 
-#include "Lighting.h"
 #include "Projector.h"
 #include "Rasterizer.h" // ImageView, TextureView
 #include "RayScene.h"
+#include "Shadows.h"
 
 #include <array>
 #include <cstdint>

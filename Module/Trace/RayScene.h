@@ -8,8 +8,7 @@
 #ifndef catarRayScene_h
 #define catarRayScene_h
 
-#include "CameraModel.h"
-#include "Lighting.h"
+#include "Types.h"
 
 #include <cstdint>
 #include <memory>
@@ -118,14 +117,6 @@ private:
   bool Dynamic = false;
   std::string Error;
 };
-
-/// Shadows at surface point p with normal n (the side the lights are seen from): lit[k] = 0 when
-/// the segment from p (moved off the surface by 1e-4 of the scene size) to light k (or far
-/// along a directional light) is blocked by the scene, else 1. Lights that cannot light p anyway
-/// (n . l <= 0, or a spotlight cone that misses p) are not traced and get 1. Returns the number
-/// of rays traced.
-int TraceShadows(
-  const RayScene& scene, const Vec3& p, const Vec3& n, const LightSet& lights, unsigned char* lit);
 } // namespace catar
 
 #endif

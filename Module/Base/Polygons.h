@@ -4,7 +4,7 @@
 #ifndef catarPolygons_h
 #define catarPolygons_h
 
-#include "CameraModel.h" // Vec3
+#include "Types.h"
 
 #include <Eigen/Geometry> // cross products
 

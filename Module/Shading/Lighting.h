@@ -19,7 +19,7 @@
 #ifndef catarLighting_h
 #define catarLighting_h
 
-#include "CameraModel.h"
+#include "Types.h"
 
 #include <initializer_list>
 #include <string>

@@ -6,7 +6,7 @@
 
 #include "CameraModel.h"
 #include "Mirror.h"
-#include "Projection.h"
+#include "Types.h"
 
 #include <algorithm>
 #include <cstddef>

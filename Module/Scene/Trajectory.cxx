@@ -21,7 +21,6 @@ namespace
 constexpr double kRigidTolerance = 1e-6;      // max |R^T R - I| of a world-to-camera matrix
 constexpr double kQuaternionTolerance = 1e-3; // | |q| - 1 | of a TUM quaternion
 constexpr double kUnitTolerance = 1e-6;       // | |q| - 1 | of a keyframe rotation
-constexpr double kNlerpAngle = 1e-6;          // below: slerp falls back to normalised lerp
 
 const char* const kTumFields = "TUM: timestamp tx ty tz qx qy qz qw";
 const char* const kMatrixFields = "matrix: timestamp and 16 numbers of world-to-camera, row-major";
@@ -310,42 +309,6 @@ void AppendPose(std::string& out, const TimedPose& pose, bool tum)
   out += '\n';
 }
 } // namespace
-
-Eigen::Quaterniond RotationFromDegrees(const Vec3& degrees)
-{
-  const double k = 3.14159265358979323846 / 180.0;
-  return Eigen::Quaterniond(Eigen::AngleAxisd(k * degrees.z(), Vec3::UnitZ()) *
-    Eigen::AngleAxisd(k * degrees.y(), Vec3::UnitY()) *
-    Eigen::AngleAxisd(k * degrees.x(), Vec3::UnitX()));
-}
-
-Eigen::Quaterniond Slerp(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b, double s)
-{
-  // The short way: b or -b, whichever is nearer a on the unit sphere of quaternions.
-  const Eigen::Vector4d va = a.coeffs();
-  const Eigen::Vector4d vb =
-    a.coeffs().dot(b.coeffs()) < 0.0 ? Eigen::Vector4d(-b.coeffs()) : Eigen::Vector4d(b.coeffs());
-  if (s == 0.0)
-  {
-    return a;
-  }
-  if (s == 1.0)
-  {
-    return Eigen::Quaterniond(vb);
-  }
-  // The angle between them, stable for nearly equal and nearly opposite vectors (unlike acos).
-  const double angle = 2.0 * std::atan2((va - vb).norm(), (va + vb).norm());
-  Eigen::Vector4d v;
-  if (angle < kNlerpAngle)
-  {
-    v = (1.0 - s) * va + s * vb;
-  }
-  else
-  {
-    v = (std::sin((1.0 - s) * angle) * va + std::sin(s * angle) * vb) / std::sin(angle);
-  }
-  return Eigen::Quaterniond(v.normalized());
-}
 
 Mat4 Trajectory::PoseAt(double t) const
 {

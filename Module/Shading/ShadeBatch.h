@@ -22,6 +22,11 @@ struct ShadingMaterial
   double opacity = 1.0;
 };
 
+/// ValidateLighting for the default material and each of materials (the error names the material:
+/// "material 2: ..."); "" when every one can be shaded with.
+std::string ValidateShading(const std::vector<LightSource>& lights, const ShadingMaterial& defaults,
+  const std::vector<ShadingMaterial>& materials, const Vec3& globalAmbient);
+
 /// The byte of a colour channel in [0, 1] (clamped): rounded to nearest, halves up, as
 /// std::lround does for these values (without a library call: 255 v + 0.5 is exact for every v
 /// in [1/510, 1]).

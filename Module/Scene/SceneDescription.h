@@ -8,7 +8,6 @@
 #define catarSceneDescription_h
 
 #include "CameraModel.h"
-#include "Projector.h"
 #include "Trajectory.h"
 
 #include <string>

@@ -10,7 +10,7 @@
 #define catarMirror_h
 
 #include "MirrorDescription.h"
-#include "Projection.h" // Vec3, ProjectionStatus, SolverType
+#include "Types.h"
 
 #include <memory>
 #include <string>

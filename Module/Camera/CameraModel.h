@@ -10,19 +10,14 @@
 #define catarCameraModel_h
 
 #include "MirrorDescription.h"
+#include "Types.h"
 
 #include <Eigen/Core>
 
-#include <cstdint>
 #include <string>
 
 namespace catar
 {
-using Vec2 = Eigen::Vector2d;
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
-using Mat4 = Eigen::Matrix4d;
-
 /// Pinhole intrinsics and image size in pixels.
 /// The largest image: at most kMaxImageSide pixels a side and kMaxImagePixels in all (2^28, a
 /// 1 GiB RGBA frame). Larger sizes are refused where they enter (calibration and scene files,
@@ -51,29 +46,6 @@ struct Distortion
   double k3 = 0.0;
   bool IsZero() const { return k1 == 0 && k2 == 0 && p1 == 0 && p2 == 0 && k3 == 0; }
 };
-
-/// What became of a point (forward projection) or a pixel (back projection).
-/// Every result carries one; coordinates of a result that is not Valid/OutsideImage are zero,
-/// never NaN.
-enum class ProjectionStatus : std::uint8_t
-{
-  Valid = 0,          ///< reflection found, pixel inside the image
-  OutsideImage = 1,   ///< reflection found, but the pixel lies outside the image
-  InsideMirror = 2,   ///< the point is inside (or on) the mirror's solid
-  HiddenByMirror = 3, ///< the mirror hides the point from every mirror point the camera sees
-  NoReflection = 4,   ///< no usable reflection: grazing/degenerate, behind the camera, or a pixel
-                      ///< whose ray misses the mirror
-  InvalidInput = 5    ///< NaN/Inf input, or an invalid camera
-};
-
-/// A short English name for a status ("valid", "outside-image", ...).
-const char* ToString(ProjectionStatus status);
-
-/// True for the statuses that carry a mirror point and a pixel (Valid, OutsideImage).
-inline bool HasProjection(ProjectionStatus s)
-{
-  return s == ProjectionStatus::Valid || s == ProjectionStatus::OutsideImage;
-}
 
 /// The non-central catadioptric camera: lens, mirror and pose.
 struct CameraModel
@@ -110,28 +82,6 @@ struct CameraModel
   /// Returns a copy for an image of another size: K is scaled so that the same rays land on the
   /// same relative positions (pixel centres convention kept).
   CameraModel Resized(int width, int height) const;
-};
-
-/// A world-to-camera pose taken apart once for many points: world <-> camera frame without
-/// re-reading the 4x4 matrix (the same arithmetic as CameraModel's WorldToCamera/CameraToWorld).
-struct PoseFrames
-{
-  explicit PoseFrames(const Mat4& worldToCamera)
-    : rotation(worldToCamera.topLeftCorner<3, 3>())
-    , rotationT(rotation.transpose())
-    , translation(worldToCamera.topRightCorner<3, 1>())
-    , centre(-rotationT * translation)
-  {
-  }
-  Mat3 rotation;    ///< R, world to camera
-  Mat3 rotationT;   ///< R^T, camera to world
-  Vec3 translation; ///< t
-  Vec3 centre;      ///< -R^T t: the camera centre in world coordinates
-  Vec3 ToCamera(const Vec3& pWorld) const { return this->rotation * pWorld + this->translation; }
-  Vec3 ToWorld(const Vec3& pCamera) const
-  {
-    return this->rotationT * (pCamera - this->translation);
-  }
 };
 
 /// Applies OpenCV's distortion to normalised coordinates (x/z, y/z).

@@ -1,6 +1,7 @@
 #include "ShadeBatch.h"
 
 #include "RayScene.h"
+#include "Shadows.h"
 
 #include <algorithm>
 
@@ -34,5 +35,21 @@ void ShadeBatch::Flush()
     o[3] = ColourByte(this->Opacity[i] * this->Alpha[i]);
   }
   this->Count = 0;
+}
+std::string ValidateShading(const std::vector<LightSource>& lights, const ShadingMaterial& defaults,
+  const std::vector<ShadingMaterial>& materials, const Vec3& globalAmbient)
+{
+  std::string error = ValidateLighting(lights, defaults.material, globalAmbient, defaults.ambientK,
+    defaults.diffuseK, defaults.opacity);
+  for (std::size_t m = 0; m < materials.size() && error.empty(); ++m)
+  {
+    error = ValidateLighting(lights, materials[m].material, globalAmbient, materials[m].ambientK,
+      materials[m].diffuseK, materials[m].opacity);
+    if (!error.empty())
+    {
+      error = "material " + std::to_string(m) + ": " + error;
+    }
+  }
+  return error;
 }
 } // namespace catar
