@@ -9,6 +9,7 @@
 #include "Csv.h"
 #include "FileOutput.h"
 #include "ImageMetrics.h"
+#include "RunMain.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -150,7 +151,9 @@ std::string Number(double v)
 }
 } // namespace
 
-int main(int argc, char* argv[])
+namespace
+{
+int Run(int argc, char* argv[])
 {
   std::vector<std::string> inputs;
   catar::CompareOptions options;
@@ -316,4 +319,10 @@ int main(int argc, char* argv[])
     }
   }
   return 0;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return catar::RunMain("catadioptric-compare", Run, argc, argv);
 }

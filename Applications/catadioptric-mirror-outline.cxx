@@ -9,6 +9,7 @@
 #include "MirrorOutline.h"
 
 #include "CommandLine.h"
+#include "RunMain.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
@@ -84,7 +85,9 @@ bool WriteOverlay(const std::string& path, const cv::Mat& bgr, const catar::Came
 }
 } // namespace
 
-int main(int argc, char* argv[])
+namespace
+{
+int Run(int argc, char* argv[])
 {
   CLI::App app("Finds a spherical mirror's centre (camera frame) from its outline in a camera "
                "frame: detects the outline, fits the sphere of the given radius and prints its "
@@ -181,4 +184,10 @@ int main(int argc, char* argv[])
     return Error(error);
   }
   return 0;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return catar::RunMain("catadioptric-mirror-outline", Run, argc, argv);
 }

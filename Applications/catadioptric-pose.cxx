@@ -9,6 +9,7 @@
 #include "PoseEstimation.h"
 
 #include "CommandLine.h"
+#include "RunMain.h"
 
 #include <cerrno>
 #include <cmath>
@@ -154,7 +155,9 @@ void PrintPose(const catar::PoseResult& r, std::size_t total)
 }
 } // namespace
 
-int main(int argc, char* argv[])
+namespace
+{
+int Run(int argc, char* argv[])
 {
   CLI::App app(
     "Finds the camera's world-to-camera pose M (p_camera = M p_world) from pixels of\n"
@@ -217,4 +220,10 @@ int main(int argc, char* argv[])
     }
   }
   return 0;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return catar::RunMain("catadioptric-pose", Run, argc, argv);
 }

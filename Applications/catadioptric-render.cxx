@@ -17,6 +17,7 @@
 
 #include "CommandLine.h"
 #include "FileOutput.h"
+#include "RunMain.h"
 #include "SceneDescription.h"
 #include "VideoIO.h"
 #include "vtkPointData.h"
@@ -419,7 +420,9 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
 }
 } // namespace
 
-int main(int argc, char* argv[])
+namespace
+{
+int Run(int argc, char* argv[])
 {
   std::string scene;
   std::string outName = "catadioptric-render.png";
@@ -776,4 +779,10 @@ int main(int argc, char* argv[])
   }
   std::printf("wrote %s\n", outName.c_str());
   return 0;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return catar::RunMain("catadioptric-render", Run, argc, argv);
 }

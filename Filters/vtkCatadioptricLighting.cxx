@@ -703,7 +703,8 @@ void vtkCatadioptricLighting::RecordLighting(vtkPolyData* input, vtkPolyData* ou
   const float unused[4] = { 0, 0, 0, 1 };
   const vtkCatadioptricColorArray base(input, this->InputColorArrayName, unused);
   std::string name;
-  if (base.HasArray() && std::strcmp(this->InputColorArrayName, vtkCatadioptricArrayNames::Colors))
+  if (base.HasArray() &&
+    std::strcmp(this->InputColorArrayName, vtkCatadioptricArrayNames::Colors) != 0)
   {
     name = this->InputColorArrayName; // passed through as it is
   }

@@ -1,7 +1,8 @@
 #include "vtkCatadioptricPainterSort.h"
 
+#include "DepthOrder.h"
+
 #include "vtkCatadioptricArrayNames.h"
-#include "vtkCatadioptricDepthOrder.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
@@ -28,7 +29,7 @@
 vtkStandardNewMacro(vtkCatadioptricPainterSort);
 
 vtkCatadioptricPainterSort::vtkCatadioptricPainterSort()
-  : Order(new vtkCatadioptricDepthOrder)
+  : Order(new catar::DepthOrder)
 {
 }
 
@@ -41,7 +42,7 @@ namespace
 constexpr vtkIdType kCopyGrain = 8192;
 
 // A cell to draw, in order: its key and its polygon index.
-using KeyedCell = vtkCatadioptricDepthOrder::Cell;
+using KeyedCell = catar::DepthOrder::Cell;
 
 // How many cells ahead the gather asks for what it will read.
 constexpr vtkIdType kPrefetchCells = 64;
@@ -132,7 +133,7 @@ void GatherCells(const InT* off, const InT* conn, const std::vector<KeyedCell>& 
       double* const depths = extras.Depths;
       for (vtkIdType i = b; i < e; ++i)
       {
-        depths[i] = vtkCatadioptricDepthOrder::DepthOfKey(cells[i].key);
+        depths[i] = catar::DepthOrder::DepthOfKey(cells[i].key);
       }
     }
     if (extras.OriginalIds)
@@ -346,7 +347,7 @@ int vtkCatadioptricPainterSort::RequestData(
   this->UpdateProgress(0.2);
   // Far to near; equal depths keep input order (a stable sort of cells in input order).
   this->Order->Sort(nPolys, depthDoubles ? depthDoubles->GetPointer(first) : converted.data(),
-    this->DropInvisibleCells ? vis : nullptr);
+    this->DropInvisibleCells ? vis : nullptr, &vtkCatadioptricParallel::GetNumberOfThreads);
   const std::vector<KeyedCell>& cells = this->Order->GetCells();
   this->UpdateProgress(0.6);
 

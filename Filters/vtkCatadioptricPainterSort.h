@@ -22,7 +22,10 @@
 
 #include <memory> // std::unique_ptr
 
-class vtkCatadioptricDepthOrder;
+namespace catar
+{
+class DepthOrder;
+}
 
 class CATADIOPTRICARFILTERS_EXPORT vtkCatadioptricPainterSort : public vtkPolyDataAlgorithm
 {
@@ -46,7 +49,7 @@ protected:
 
   bool DropInvisibleCells = false;
   // The order's buffers, kept between executions.
-  std::unique_ptr<vtkCatadioptricDepthOrder> Order;
+  std::unique_ptr<catar::DepthOrder> Order;
 
 private:
   vtkCatadioptricPainterSort(const vtkCatadioptricPainterSort&) = delete;

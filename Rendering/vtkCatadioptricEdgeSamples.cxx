@@ -254,8 +254,10 @@ bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& 
             }
             else
             {
-              planes->At(x - 0.5 + (k % samples + 0.5) / samples,
-                y - 0.5 + (k / samples + 0.5) / samples, s + 4 * k);
+              const int column = k % samples; // the sample's place in the pixel's grid
+              const int row = k / samples;
+              planes->At(
+                x - 0.5 + (column + 0.5) / samples, y - 0.5 + (row + 0.5) / samples, s + 4 * k);
             }
           }
         }

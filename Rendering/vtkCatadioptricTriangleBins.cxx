@@ -162,7 +162,7 @@ bool vtkCatadioptricTriangleBins::Build(
     anyPointFloats = anyPointFloats || m.Colours == ColourSource::PointFloats;
     anyCellColours = anyCellColours || m.Colours == ColourSource::Cell;
     anyTexture = anyTexture || m.Texture >= 0;
-    this->Meshes.push_back(std::move(m));
+    this->Meshes.push_back(m);
   }
   if (nPoints > kMaxIndex || nCells > kMaxIndex ||
     this->Meshes.size() > std::numeric_limits<std::uint16_t>::max())

@@ -40,7 +40,7 @@ Eigen::Quaterniond RotationFromDegrees(const Vec3& degrees)
 Eigen::Quaterniond Slerp(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b, double s)
 {
   // The short way: b or -b, whichever is nearer a on the unit sphere of quaternions.
-  const Eigen::Vector4d va = a.coeffs();
+  const Eigen::Vector4d& va = a.coeffs();
   const Eigen::Vector4d vb =
     a.coeffs().dot(b.coeffs()) < 0.0 ? Eigen::Vector4d(-b.coeffs()) : Eigen::Vector4d(b.coeffs());
   if (s == 0.0)

@@ -109,7 +109,7 @@ std::vector<double> MatrixNumbers(const Node& node, const std::string& key, std:
   if (node.isMap())
   {
     const double rows = Number(node, "rows"), cols = Number(node, "cols");
-    const std::vector<double> data = Numbers(node["data"], key + ".data");
+    std::vector<double> data = Numbers(node["data"], key + ".data");
     if (!(rows >= 1 && cols >= 1 && rows * cols == static_cast<double>(data.size())))
     {
       throw ParseError("'" + key + "': rows x cols must be the number of values in data");

@@ -467,7 +467,7 @@ std::uint64_t ReadBinary(const File& f, const Element& array, bool keep, std::st
     }
     return n;
   }
-  const std::string head = peek(static_cast<std::uint64_t>(3 * hs));
+  const std::string head = peek(3 * static_cast<std::uint64_t>(hs));
   const std::uint64_t blocks = Word(f, head, 0, hs);
   const std::uint64_t blockSize = Word(f, head, 1, hs);
   const std::uint64_t lastSize = Word(f, head, 2, hs);
@@ -484,7 +484,7 @@ std::uint64_t ReadBinary(const File& f, const Element& array, bool keep, std::st
   {
     throw VtpError("a compressed array announces more blocks than the file can hold");
   }
-  const std::string table = read((3 + blocks) * hs).substr(static_cast<std::size_t>(3 * hs));
+  const std::string table = read((3 + blocks) * hs).substr(3 * static_cast<std::size_t>(hs));
   std::uint64_t compressedTotal = 0;
   for (std::uint64_t b = 0; b < blocks; ++b)
   {

@@ -507,7 +507,7 @@ QuadricSurface::QuadricSurface(const MirrorDescription& description, const Quadr
   // The point nearest all the reflected rays; the mean mirror point where that is ill-posed.
   const Eigen::SelfAdjointEigenSolver<Mat3> eig(normal);
   Vec3 viewpoint = mean;
-  const Vec3 values = eig.eigenvalues(); // ascending
+  const Vec3& values = eig.eigenvalues(); // ascending
   if (eig.info() == Eigen::Success && values[0] > 1e-6 * values[2])
   {
     const Mat3& V = eig.eigenvectors();

@@ -66,7 +66,7 @@ Vec3 Vec3Or(const fs::Node& parent, const std::string& key, const Vec3& fallback
 
 Vec3 ColorOr(const fs::Node& parent, const std::string& key, const Vec3& fallback)
 {
-  const Vec3 c = Vec3Or(parent, key, fallback);
+  Vec3 c = Vec3Or(parent, key, fallback);
   if ((c.array() < 0.0).any() || (c.array() > 1.0).any())
   {
     throw fs::ParseError("'" + key + "' must be RGB in [0, 1]");
@@ -973,7 +973,7 @@ std::string InstalledDataDir()
         : nullptr;
       if (real)
       {
-        const std::string found = real; // without the "bin/../" of the relative path
+        std::string found = real; // without the "bin/../" of the relative path
         std::free(real);
         return found;
       }
@@ -988,7 +988,7 @@ std::string FindDataFile(const std::string& baseDir, const std::string& path)
   {
     return path;
   }
-  const std::string local = Join(baseDir, path);
+  std::string local = Join(baseDir, path);
   if (Exists(local))
   {
     return local;

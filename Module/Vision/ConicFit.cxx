@@ -87,7 +87,7 @@ ConicKind EllipseOf(const Mat3& conic, Ellipse& e)
   e.centre = -q2.inverse() * l;
   const double k = q(2, 2) + l.dot(e.centre); // (x - c)^T Q2 (x - c) = -k
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(q2);
-  const Vec2 lambda = es.eigenvalues(); // ascending, both positive
+  const Vec2& lambda = es.eigenvalues(); // ascending, both positive
   if (!(k < 0.0) || !(lambda(0) > 0.0) || !e.centre.allFinite())
   {
     return ConicKind::Imaginary;

@@ -273,7 +273,7 @@ bool SphereFromOutline(const CameraModel& camera, double radius,
   // -Q ~ d d^T - cos^2(a) I: after the sign fix (2x2 block positive definite) Q has one negative
   // eigenvalue (-sin^2 a, eigenvector d) and two positive ones (cos^2 a).
   const Eigen::SelfAdjointEigenSolver<Mat3> es(ellipse.Q);
-  const Vec3 lambda = es.eigenvalues(); // ascending
+  const Vec3& lambda = es.eigenvalues(); // ascending
   const double positive = 0.5 * (lambda(1) + lambda(2));
   const double tan2 = -lambda(0) / positive;
   if (!(lambda(0) < 0.0) || !(positive > 0.0) || !std::isfinite(tan2))

@@ -1,8 +1,7 @@
-// vtkCatadioptricDepthOrder: the order of std::stable_sort by decreasing depth, for any number of
+// catar::DepthOrder: the order of std::stable_sort by decreasing depth, for any number of
 // threads and parts, with the radix making no pass, one pass (the result lands in the other
 // buffer) and two or three passes, kept and dropped cells, and buffers reused between sorts.
-#include "vtkCatadioptricDepthOrder.h"
-#include "vtkSMPTools.h"
+#include "DepthOrder.h"
 
 #include <gtest/gtest.h>
 
@@ -18,35 +17,35 @@
 namespace
 {
 // The expected order: the kept cells, stably sorted by decreasing depth.
-std::vector<vtkIdType> Expected(
+std::vector<std::int64_t> Expected(
   const std::vector<double>& depth, const std::vector<unsigned char>& keep)
 {
-  std::vector<vtkIdType> cells;
-  for (vtkIdType c = 0; c < static_cast<vtkIdType>(depth.size()); ++c)
+  std::vector<std::int64_t> cells;
+  for (std::int64_t c = 0; c < static_cast<std::int64_t>(depth.size()); ++c)
   {
     if (keep.empty() || keep[c])
     {
       cells.push_back(c);
     }
   }
-  std::stable_sort(
-    cells.begin(), cells.end(), [&](vtkIdType a, vtkIdType b) { return depth[a] > depth[b]; });
+  std::stable_sort(cells.begin(), cells.end(),
+    [&](std::int64_t a, std::int64_t b) { return depth[a] > depth[b]; });
   return cells;
 }
 
-void ExpectOrder(vtkCatadioptricDepthOrder& order, const std::vector<double>& depth,
-  const std::vector<unsigned char>& keep, const char* what)
+void ExpectOrder(catar::DepthOrder& order, const std::vector<double>& depth,
+  const std::vector<unsigned char>& keep, const char* what, int (*threads)())
 {
-  order.Sort(
-    static_cast<vtkIdType>(depth.size()), depth.data(), keep.empty() ? nullptr : keep.data());
-  const std::vector<vtkIdType> expected = Expected(depth, keep);
-  const std::vector<vtkCatadioptricDepthOrder::Cell>& cells = order.GetCells();
+  order.Sort(static_cast<std::int64_t>(depth.size()), depth.data(),
+    keep.empty() ? nullptr : keep.data(), threads);
+  const std::vector<std::int64_t> expected = Expected(depth, keep);
+  const std::vector<catar::DepthOrder::Cell>& cells = order.GetCells();
   ASSERT_EQ(cells.size(), expected.size()) << what;
   for (std::size_t i = 0; i < expected.size(); ++i)
   {
     ASSERT_EQ(cells[i].cell, expected[i]) << what << ", place " << i;
     const double d = depth[expected[i]];
-    ASSERT_EQ(vtkCatadioptricDepthOrder::DepthOfKey(cells[i].key), d == 0.0 ? 0.0 : d) << what;
+    ASSERT_EQ(catar::DepthOrder::DepthOfKey(cells[i].key), d == 0.0 ? 0.0 : d) << what;
   }
 }
 
@@ -60,11 +59,11 @@ double Bits(std::uint64_t base, std::uint64_t k, int bit)
 }
 } // namespace
 
-TEST(vtkCatadioptricDepthOrder, StableFarToNearForAnyThreadsAndPasses)
+TEST(DepthOrder, StableFarToNearForAnyThreadsAndPasses)
 {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const vtkIdType n = 200000; // parts of 16384 cells and more
+  const std::int64_t n = 200000; // parts of 16384 cells and more
   std::uint64_t one;
   const double oneValue = 1.0;
   std::memcpy(&one, &oneValue, sizeof one);
@@ -73,7 +72,7 @@ TEST(vtkCatadioptricDepthOrder, StableFarToNearForAnyThreadsAndPasses)
   std::vector<const char*> names = { "scene depths with ties, -0 and negatives",
     "all equal (no pass)", "one digit varies (one pass)", "near ties only (runs)",
     "few cells (one part)" };
-  for (vtkIdType c = 0; c < n; ++c)
+  for (std::int64_t c = 0; c < n; ++c)
   {
     const int kind = static_cast<int>(c % 10);
     scenes[0][c] = kind == 0 ? 0.6
@@ -96,42 +95,36 @@ TEST(vtkCatadioptricDepthOrder, StableFarToNearForAnyThreadsAndPasses)
     k = rng() % 5 != 0 ? 1 : 0;
   }
 
-  const int defaultThreads = vtkSMPTools::GetEstimatedNumberOfThreads();
-  vtkCatadioptricDepthOrder order; // one object throughout: its buffers are reused
-  for (const int threads : { 1, 2, 3 })
+  catar::DepthOrder order; // one object throughout: its buffers are reused
+  for (int (*threads)() : { +[] { return 1; }, +[] { return 2; }, +[] { return 3; } })
   {
-    vtkSMPTools::Initialize(threads);
     for (std::size_t s = 0; s < scenes.size(); ++s)
     {
-      ExpectOrder(order, scenes[s], {}, names[s]);
+      ExpectOrder(order, scenes[s], {}, names[s], threads);
       std::vector<unsigned char> keep(some.begin(), some.begin() + scenes[s].size());
-      ExpectOrder(order, scenes[s], keep, names[s]);
+      ExpectOrder(order, scenes[s], keep, names[s], threads);
     }
   }
-  vtkSMPTools::Initialize(defaultThreads);
 
   // Nothing kept, nothing at all.
   std::vector<unsigned char> none(100, 0);
   std::vector<double> depths(100, 1.0);
-  order.Sort(100, depths.data(), none.data());
+  order.Sort(100, depths.data(), none.data(), nullptr);
   EXPECT_TRUE(order.GetCells().empty());
-  order.Sort(0, nullptr, nullptr);
+  order.Sort(0, nullptr, nullptr, nullptr);
   EXPECT_TRUE(order.GetCells().empty());
 }
 
-TEST(vtkCatadioptricDepthOrder, KeysOrderDepthsFarToNear)
+TEST(DepthOrder, KeysOrderDepthsFarToNear)
 {
   const double depths[] = { -1e300, -2.5, -1e-300, 0.0, 1e-300, 0.5, 1.0, 3.0, 1e300,
     std::numeric_limits<double>::infinity() };
   for (std::size_t i = 0; i + 1 < sizeof depths / sizeof depths[0]; ++i)
   {
-    EXPECT_GT(vtkCatadioptricDepthOrder::FarToNearKey(depths[i]),
-      vtkCatadioptricDepthOrder::FarToNearKey(depths[i + 1]))
+    EXPECT_GT(
+      catar::DepthOrder::FarToNearKey(depths[i]), catar::DepthOrder::FarToNearKey(depths[i + 1]))
       << depths[i];
-    EXPECT_EQ(
-      vtkCatadioptricDepthOrder::DepthOfKey(vtkCatadioptricDepthOrder::FarToNearKey(depths[i])),
-      depths[i]);
+    EXPECT_EQ(catar::DepthOrder::DepthOfKey(catar::DepthOrder::FarToNearKey(depths[i])), depths[i]);
   }
-  EXPECT_EQ(
-    vtkCatadioptricDepthOrder::FarToNearKey(-0.0), vtkCatadioptricDepthOrder::FarToNearKey(0.0));
+  EXPECT_EQ(catar::DepthOrder::FarToNearKey(-0.0), catar::DepthOrder::FarToNearKey(0.0));
 }
