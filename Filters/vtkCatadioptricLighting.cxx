@@ -90,6 +90,7 @@ bool HasDegenerateNormal(
   }
   return false;
 }
+
 // The inputs of the per-point (Gouraud) shading: the projection's arrays, the normals (read
 // through raw pointers where their type allows), base colours and materials.
 struct PointInputs
@@ -231,6 +232,7 @@ void ShadeCells(
       }
     });
 }
+
 // The lit colours in place of any Colors array of the output's points and cells, in `to` (its
 // point or its cell data).
 void ReplaceColors(vtkPolyData* output, vtkDataArray* colors, vtkFieldData* to)

@@ -119,6 +119,7 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
     });
   });
 }
+
 // The PathLength output: the depth buffer's rows (top first) in VTK's row order; a pixel never
 // drawn (infinite depth) is NaN.
 vtkSmartPointer<vtkFloatArray> PathLengthImage(const float* depth, int width, int height)
@@ -141,6 +142,7 @@ vtkSmartPointer<vtkFloatArray> PathLengthImage(const float* depth, int width, in
   });
   return pathLength;
 }
+
 // The meshes to draw, their arrays checked (PathLength when wantPathLength; OriginalCellId when
 // wantIds; the colour array; the texture they name). False, with an error, when one lacks what it
 // needs.
@@ -238,9 +240,9 @@ bool CollectMeshes(vtkObject* self, vtkInformationVector* meshInputs,
     }
     meshes.push_back(in);
   }
-
   return true;
 }
+
 // The VisibleTriangle output (nPixels values, kept from the last execution when no one else holds
 // it), added to output, and where the rasteriser writes its ids: the array itself, or idCopy
 // where catar::RasterId is not vtkTypeInt64.

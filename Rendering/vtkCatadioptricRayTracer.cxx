@@ -483,6 +483,7 @@ std::string UpdateTraceMesh(vtkPolyData* mesh, vtkCatadioptricLighting* lighting
   }
   return std::string();
 }
+
 // The meshes to trace, one a port-1 input (an empty one for a missing input), each made again
 // only where it changed (entries keep them between executions), lit with the tracer's
 // SetMeshLighting or the lighting recorded in the mesh; the scene's lights gathered in

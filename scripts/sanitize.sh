@@ -23,8 +23,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export VTK_SMP_BACKEND_IN_USE=STDThread
 # Only what the labels below run (gtest discovery runs the test programs, so the options above
 # apply to the build too).
-cmake --build build-asan -j "$(nproc)" --target TestCore TestMeshPrep TestVTK catadioptric-render \
-  catadioptric-compare FuzzInputs
+cmake --build build-asan -j "$(nproc)" --target TestCore TestWithoutOptional TestMeshPrep TestVTK \
+  catadioptric-render catadioptric-compare FuzzInputs
 cd build-asan
 xvfb-run -a ctest --output-on-failure --timeout 1800 -L 'core|meshprep|vtk|corpus|fuzz' \
   -LE 'python|paraview' "$@"

@@ -4,7 +4,6 @@
 #include "CameraModel.h"
 #include "Mirror.h"
 #include "Projector.h"
-#include "SceneDescription.h"
 
 #include "vtkCatadioptricParallel.h"
 #include "vtkDataArray.h"
@@ -115,7 +114,7 @@ vtkCatadioptricCamera::vtkCatadioptricCamera()
   : WorldToCamera(vtkSmartPointer<vtkMatrix4x4>::New())
 {
   // The mirror of the demo rig (Data/scenes/demo.yaml), whose lens the defaults above are.
-  static const catar::MirrorDescription demoMirror = catar::DemoScene().camera.mirror;
+  static const catar::MirrorDescription demoMirror = catar::DemoCamera().mirror;
   this->MirrorType = demoMirror.type;
   this->MirrorParameters = demoMirror.parameters;
 }

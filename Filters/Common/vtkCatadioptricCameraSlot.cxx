@@ -3,7 +3,6 @@
 #include "CalibrationIO.h"
 #include "CameraModel.h"
 #include "Mirror.h"
-#include "SceneDescription.h"
 #include "Trajectory.h"
 
 #include "vtkCatadioptricCamera.h"
@@ -16,13 +15,6 @@
 
 namespace
 {
-// The built-in demo camera (Data/calibration/demo-camera.yaml, the demo scene's), parsed once.
-const catar::CameraModel& DemoCamera()
-{
-  static const catar::CameraModel camera = catar::DemoScene().camera;
-  return camera;
-}
-
 template<std::size_t N>
 bool Assign(double (&to)[N], const double* from)
 {
@@ -37,7 +29,7 @@ bool Assign(double (&to)[N], const double* from)
 
 vtkCatadioptricCameraSlot::vtkCatadioptricCameraSlot()
 {
-  const catar::CameraModel& demo = DemoCamera();
+  const catar::CameraModel& demo = catar::DemoCamera(); // the panel starts as the demo camera
   this->PanelImageSize[0] = demo.intrinsics.width;
   this->PanelImageSize[1] = demo.intrinsics.height;
   this->PanelFocalLength[0] = demo.intrinsics.fx;
@@ -397,7 +389,7 @@ vtkCatadioptricCamera* vtkCatadioptricCameraSlot::ResolvePanel(std::string& erro
     error = why.str();
     return nullptr;
   }
-  catar::CameraModel model = DemoCamera();
+  catar::CameraModel model = catar::DemoCamera();
   model.intrinsics.width = size[0];
   model.intrinsics.height = size[1];
   model.intrinsics.fx = this->PanelFocalLength[0];

@@ -1,6 +1,7 @@
 #include "CalibrationIO.h"
 
 #include "ConfigReader.h"
+#include "DemoCameraText.h"
 #include "FileOutput.h"
 #include "Mirror.h"
 
@@ -318,5 +319,19 @@ std::string CalibrationToString(const CameraModel& model, bool json)
       (json ? cv::FileStorage::FORMAT_JSON : cv::FileStorage::FORMAT_YAML));
   WriteStorage(out, model);
   return out.releaseAndGetString();
+}
+const CameraModel& DemoCamera()
+{
+  static const CameraModel camera = [] {
+    CameraModel model;
+    std::string error;
+    if (!ParseCalibration(kDemoCameraText, model, error))
+    {
+      // The built-in text is fixed; a failure here is a programming error caught by the tests.
+      throw std::runtime_error("built-in demo camera: " + error);
+    }
+    return model;
+  }();
+  return camera;
 }
 } // namespace catar

@@ -24,6 +24,10 @@ bool ParseCalibration(const std::string& text, CameraModel& model, std::string& 
 /// Writes a calibration file; the format follows the extension (.yaml/.yml or .json).
 bool SaveCalibration(const std::string& path, const CameraModel& model, std::string& error);
 
+/// The built-in demo camera: Data/calibration/demo-camera.yaml, embedded when the project is
+/// configured (the demo scene's camera; the VTK camera's defaults). Parsed once.
+const CameraModel& DemoCamera();
+
 /// The calibration as YAML (or JSON) text.
 std::string CalibrationToString(const CameraModel& model, bool json = false);
 } // namespace catar

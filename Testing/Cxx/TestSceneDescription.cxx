@@ -47,7 +47,8 @@ TEST(SceneDescription, DemoCamerasAgree)
   ASSERT_TRUE(LoadCalibration(
     std::string(CATAR_SOURCE_DIR) + "/Data/calibration/demo-camera.yaml", file, error))
     << error;
-  for (const CameraModel& m : { file, DemoScene().camera })
+  // The file, the demo scene's camera and the built-in one (the VTK camera's defaults).
+  for (const CameraModel& m : { file, DemoScene().camera, DemoCamera() })
   {
     EXPECT_EQ(m.intrinsics.width, rig.intrinsics.width);
     EXPECT_EQ(m.intrinsics.height, rig.intrinsics.height);
