@@ -845,19 +845,13 @@ bool vtkCatadioptricLighting::ShadowScene(
 int vtkCatadioptricLighting::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!input || !output)
+  vtkPolyData* input = nullptr;
+  vtkPolyData* output = nullptr;
+  if (!vtkCatadioptricMeshCheck::InputAndOutput(this, inputVector, outputVector, input, output))
   {
-    vtkErrorMacro("Input and output must be vtkPolyData.");
     return 0;
   }
   std::string error;
-  if (!vtkCatadioptricMeshCheck::Check(input, error))
-  {
-    vtkErrorMacro("Bad input mesh: " << error);
-    return 0;
-  }
   output->ShallowCopy(input);
   // The lighting recorded in the output, for the ray tracer to light the mesh alike.
   this->RecordLighting(input, output);

@@ -285,40 +285,64 @@ std::vector<TupleGather> PrepareCellData(vtkCellData* in, vtkCellData* out,
   }
   return tuples;
 }
+// The input's CentroidDepth cell array (one value a cell) and its Visible cell array (uint8; may
+// be null unless dropInvisible), checked. False, with the error reported by `self`, when one is
+// missing.
+bool SortArrays(vtkObject* self, vtkPolyData* input, bool dropInvisible, vtkDataArray*& depth,
+  vtkUnsignedCharArray*& visible)
+{
+  const vtkIdType nCells = input->GetNumberOfCells();
+  depth = input->GetCellData()->GetArray(vtkCatadioptricArrayNames::CentroidDepth);
+  if (nCells > 0 &&
+    (!depth || depth->GetNumberOfComponents() != 1 || depth->GetNumberOfTuples() != nCells))
+  {
+    vtkErrorWithObjectMacro(self,
+      "The input has no CentroidDepth cell array: run vtkCatadioptricProjection "
+      "before vtkCatadioptricPainterSort.");
+    return false;
+  }
+  visible = vtkUnsignedCharArray::SafeDownCast(
+    input->GetCellData()->GetArray(vtkCatadioptricArrayNames::Visible));
+  if (dropInvisible && nCells > 0 && !visible)
+  {
+    vtkErrorWithObjectMacro(
+      self, "DropInvisibleCells is on but the input has no uint8 Visible cell array.");
+    return false;
+  }
+  return true;
+}
+
+// The depths of the n polygons from cell `first` on: the array's own values when it holds
+// doubles, else converted once into `converted`.
+const double* PolygonDepths(
+  vtkDataArray* depth, vtkIdType first, vtkIdType n, std::vector<double>& converted)
+{
+  if (auto* doubles = vtkDoubleArray::SafeDownCast(depth))
+  {
+    return doubles->GetPointer(first);
+  }
+  converted.resize(static_cast<size_t>(n));
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    converted[c] = depth->GetComponent(first + c, 0);
+  }
+  return converted.data();
+}
 } // namespace
 
 int vtkCatadioptricPainterSort::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!input || !output)
+  vtkPolyData* input = nullptr;
+  vtkPolyData* output = nullptr;
+  if (!vtkCatadioptricMeshCheck::InputAndOutput(this, inputVector, outputVector, input, output))
   {
-    vtkErrorMacro("Input and output must be vtkPolyData.");
     return 0;
   }
-  std::string inputError;
-  if (!vtkCatadioptricMeshCheck::Check(input, inputError))
+  vtkDataArray* depthArray = nullptr;
+  vtkUnsignedCharArray* visible = nullptr;
+  if (!SortArrays(this, input, this->DropInvisibleCells, depthArray, visible))
   {
-    vtkErrorMacro("Bad input mesh: " << inputError);
-    return 0;
-  }
-  const vtkIdType nCells = input->GetNumberOfCells();
-  vtkDataArray* depthArray =
-    input->GetCellData()->GetArray(vtkCatadioptricArrayNames::CentroidDepth);
-  if (nCells > 0 &&
-    (!depthArray || depthArray->GetNumberOfComponents() != 1 ||
-      depthArray->GetNumberOfTuples() != nCells))
-  {
-    vtkErrorMacro("The input has no CentroidDepth cell array: run vtkCatadioptricProjection "
-                  "before vtkCatadioptricPainterSort.");
-    return 0;
-  }
-  vtkUnsignedCharArray* visible = vtkUnsignedCharArray::SafeDownCast(
-    input->GetCellData()->GetArray(vtkCatadioptricArrayNames::Visible));
-  if (this->DropInvisibleCells && nCells > 0 && !visible)
-  {
-    vtkErrorMacro("DropInvisibleCells is on but the input has no uint8 Visible cell array.");
     return 0;
   }
   if (input->GetNumberOfVerts() + input->GetNumberOfLines() + input->GetNumberOfStrips() > 0)
@@ -334,20 +358,12 @@ int vtkCatadioptricPainterSort::RequestData(
   // output's Visible is all ones, written in order instead of gathered from random places.
   const bool keptVisibleOnes = this->DropInvisibleCells && vis &&
     std::all_of(vis, vis + nPolys, [](unsigned char v) { return v <= 1; });
-  // Depths in another type than double: converted once.
   std::vector<double> converted;
-  if (!depthDoubles)
-  {
-    converted.resize(static_cast<size_t>(nPolys));
-    for (vtkIdType c = 0; c < nPolys; ++c)
-    {
-      converted[c] = depthArray->GetComponent(first + c, 0);
-    }
-  }
+  const double* depths = PolygonDepths(depthArray, first, nPolys, converted);
   this->UpdateProgress(0.2);
   // Far to near; equal depths keep input order (a stable sort of cells in input order).
-  this->Order->Sort(nPolys, depthDoubles ? depthDoubles->GetPointer(first) : converted.data(),
-    this->DropInvisibleCells ? vis : nullptr, &vtkCatadioptricParallel::GetNumberOfThreads);
+  this->Order->Sort(nPolys, depths, this->DropInvisibleCells ? vis : nullptr,
+    &vtkCatadioptricParallel::GetNumberOfThreads);
   const std::vector<KeyedCell>& cells = this->Order->GetCells();
   this->UpdateProgress(0.6);
 

@@ -100,6 +100,24 @@ struct PointOutputs
     r.visible = this->Vi[i];
   }
 
+  // The vertex pass: the n points projected in parallel runs, each point's search started from
+  // its neighbour's answer (catar::ProjectRun).
+  void Project(
+    const catar::Projector& projector, catar::SolverType solver, vtkPoints* from, vtkIdType n)
+  {
+    if (n == 0)
+    {
+      return;
+    }
+    const vtkCatadioptricPointReader points(from);
+    vtkCatadioptricParallel::For(0, n, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
+      catar::ProjectRun(projector, solver, begin, end, points,
+        [&](vtkIdType i, const catar::Vec3& p, const catar::ProjectedPoint& q) {
+          this->Store(i, p, q);
+        });
+    });
+  }
+
   // Room for n points, the first `kept` points' values kept.
   void Grow(vtkIdType kept, vtkIdType n)
   {
@@ -151,12 +169,23 @@ constexpr vtkIdType kPrefetchCells = 8;
 // Projects the polygons' centroids and decides cell visibility; runs over a range of polygons.
 struct CellWorker
 {
+  // For the camera of `projector`: its image size and pose.
+  CellWorker(const catar::Projector& projector, bool cullBackFaces)
+    : Projector(&projector)
+    , Width(projector.GetModel().intrinsics.width)
+    , Height(projector.GetModel().intrinsics.height)
+    , CullBackFaces(cullBackFaces)
+    , CameraToWorldRotation(projector.GetPose().rotationT)
+    , CameraCentre(projector.GetPose().centre)
+  {
+  }
+
   const catar::Projector* Projector;
-  const VertexRecord* Vertices;
-  double* Depth;
-  double* CentroidMirror;
-  unsigned char* Visible;
-  vtkIdType CellOffset; // cell-data index of the first polygon
+  const VertexRecord* Vertices = nullptr;
+  double* Depth = nullptr;
+  double* CentroidMirror = nullptr;
+  unsigned char* Visible = nullptr;
+  vtkIdType CellOffset = 0; // cell-data index of the first polygon
   double Width;
   double Height;
   bool CullBackFaces;
@@ -475,17 +504,10 @@ int vtkCatadioptricProjection::RequestInformation(
 int vtkCatadioptricProjection::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!input || !output)
+  vtkPolyData* input = nullptr;
+  vtkPolyData* output = nullptr;
+  if (!vtkCatadioptricMeshCheck::InputAndOutput(this, inputVector, outputVector, input, output))
   {
-    vtkErrorMacro("Input and output must be vtkPolyData.");
-    return 0;
-  }
-  std::string inputError;
-  if (!vtkCatadioptricMeshCheck::Check(input, inputError))
-  {
-    vtkErrorMacro("Bad input mesh: " << inputError);
     return 0;
   }
   vtkCatadioptricCamera* camera = this->ResolveValidCamera(outputVector->GetInformationObject(0));
@@ -503,29 +525,13 @@ int vtkCatadioptricProjection::RequestData(
   const vtkIdType nPts = input->GetNumberOfPoints();
   this->UpdateProgress(0.0);
   PointOutputs out(nPts);
-  if (nPts > 0)
-  {
-    const vtkCatadioptricPointReader points(input->GetPoints());
-    vtkCatadioptricParallel::For(0, nPts, kPointGrain, [&](vtkIdType begin, vtkIdType end) {
-      catar::ProjectRun(projector, solver, begin, end, points,
-        [&](vtkIdType i, const catar::Vec3& p, const catar::ProjectedPoint& q) {
-          out.Store(i, p, q);
-        });
-    });
-  }
+  out.Project(projector, solver, input->GetPoints(), nPts);
   this->UpdateProgress(0.5);
   if (input->GetNumberOfStrips() > 0)
   {
     vtkWarningMacro("Triangle strips are not drawn; run vtkTriangleFilter first.");
   }
-  CellWorker worker;
-  worker.Projector = &projector;
-  worker.Width = camera->GetImageWidth();
-  worker.Height = camera->GetImageHeight();
-  worker.CullBackFaces = this->BackFaceCulling;
-  const catar::PoseFrames& pose = projector.GetPose();
-  worker.CameraToWorldRotation = pose.rotationT;
-  worker.CameraCentre = pose.centre;
+  CellWorker worker(projector, this->BackFaceCulling);
   worker.Tessellation.boundaryTolerance = this->BoundaryTolerance;
   worker.Tessellation.bendTolerance = this->AdaptiveTolerance;
   worker.Tessellation.solver = solver;

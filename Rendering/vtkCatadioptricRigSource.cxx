@@ -24,6 +24,91 @@
 
 vtkStandardNewMacro(vtkCatadioptricRigSource);
 
+namespace
+{
+// The rig's points (the camera centre, the frustum's far border, then the mirror, with the
+// mirror's normals) and cells (the centre; the frustum's edges and border; the mirror's outlines
+// when `outline`; the mirror's triangles) into `geometry`. Returns the number of the frustum's
+// lines, the first lines.
+vtkIdType RigToPolyData(const catar::RigGeometry& rig, bool outline, vtkPolyData* geometry)
+{
+  const vtkIdType borderStart = 1;
+  const vtkIdType mirrorStart = borderStart + static_cast<vtkIdType>(rig.border.size());
+  const vtkIdType pointCount = mirrorStart + static_cast<vtkIdType>(rig.mirrorPoints.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(pointCount);
+  vtkNew<vtkDoubleArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(pointCount);
+  normals->Fill(0.0);
+  points->SetPoint(0, rig.centre.data());
+  for (std::size_t k = 0; k < rig.border.size(); ++k)
+  {
+    points->SetPoint(borderStart + static_cast<vtkIdType>(k), rig.border[k].data());
+  }
+  for (std::size_t k = 0; k < rig.mirrorPoints.size(); ++k)
+  {
+    const vtkIdType id = mirrorStart + static_cast<vtkIdType>(k);
+    points->SetPoint(id, rig.mirrorPoints[k].data());
+    normals->SetTuple(id, rig.mirrorNormals[k].data());
+  }
+
+  // Cells, part by part (vertices, then lines, then triangles, as vtkPolyData orders them).
+  vtkNew<vtkCellArray> verts;
+  vtkNew<vtkCellArray> lines;
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType centre = 0;
+  verts->InsertNextCell(1, &centre);
+  vtkIdType lineCount = 0;
+  for (int c = 0; c < 4; ++c)
+  {
+    if (rig.corners[c] >= 0)
+    {
+      const vtkIdType ends[2] = { centre, borderStart + rig.corners[c] };
+      lines->InsertNextCell(2, ends);
+      ++lineCount;
+    }
+  }
+  if (rig.border.size() >= 2)
+  {
+    lines->InsertNextCell(static_cast<vtkIdType>(rig.border.size()) + 1);
+    for (std::size_t k = 0; k <= rig.border.size(); ++k)
+    {
+      lines->InsertCellPoint(borderStart + static_cast<vtkIdType>(k % rig.border.size()));
+    }
+    ++lineCount;
+  }
+  const vtkIdType frustumLines = lineCount;
+  if (outline)
+  {
+    for (const std::vector<int>& loop : rig.outlines)
+    {
+      lines->InsertNextCell(static_cast<vtkIdType>(loop.size()) + 1);
+      for (std::size_t k = 0; k <= loop.size(); ++k)
+      {
+        lines->InsertCellPoint(mirrorStart + loop[k % loop.size()]);
+      }
+      ++lineCount;
+    }
+  }
+  polys->AllocateEstimate(static_cast<vtkIdType>(rig.mirrorTriangles.size()), 3);
+  for (const auto& t : rig.mirrorTriangles)
+  {
+    const vtkIdType ids[3] = { mirrorStart + t[0], mirrorStart + t[1], mirrorStart + t[2] };
+    polys->InsertNextCell(3, ids);
+  }
+
+  geometry->SetPoints(points);
+  geometry->SetVerts(verts);
+  geometry->SetLines(lines);
+  geometry->SetPolys(polys);
+  geometry->GetPointData()->SetNormals(normals);
+  return frustumLines;
+}
+} // namespace
+
 vtkCatadioptricRigSource::vtkCatadioptricRigSource()
 {
   this->SetNumberOfInputPorts(0);
@@ -95,75 +180,11 @@ int vtkCatadioptricRigSource::RequestData(
     return 0;
   }
 
-  // Points: the centre, the frustum's far border, the mirror.
-  const vtkIdType borderStart = 1;
-  const vtkIdType mirrorStart = borderStart + static_cast<vtkIdType>(rig.border.size());
-  const vtkIdType pointCount = mirrorStart + static_cast<vtkIdType>(rig.mirrorPoints.size());
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(pointCount);
-  vtkNew<vtkDoubleArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(pointCount);
-  normals->Fill(0.0);
-  points->SetPoint(0, rig.centre.data());
-  for (std::size_t k = 0; k < rig.border.size(); ++k)
-  {
-    points->SetPoint(borderStart + static_cast<vtkIdType>(k), rig.border[k].data());
-  }
-  for (std::size_t k = 0; k < rig.mirrorPoints.size(); ++k)
-  {
-    const vtkIdType id = mirrorStart + static_cast<vtkIdType>(k);
-    points->SetPoint(id, rig.mirrorPoints[k].data());
-    normals->SetTuple(id, rig.mirrorNormals[k].data());
-  }
-
-  // Cells, part by part (vertices, then lines, then triangles, as vtkPolyData orders them).
-  vtkNew<vtkCellArray> verts;
-  vtkNew<vtkCellArray> lines;
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType centre = 0;
-  verts->InsertNextCell(1, &centre);
-  vtkIdType lineCount = 0;
-  for (int c = 0; c < 4; ++c)
-  {
-    if (rig.corners[c] >= 0)
-    {
-      const vtkIdType ends[2] = { centre, borderStart + rig.corners[c] };
-      lines->InsertNextCell(2, ends);
-      ++lineCount;
-    }
-  }
-  if (rig.border.size() >= 2)
-  {
-    lines->InsertNextCell(static_cast<vtkIdType>(rig.border.size()) + 1);
-    for (std::size_t k = 0; k <= rig.border.size(); ++k)
-    {
-      lines->InsertCellPoint(borderStart + static_cast<vtkIdType>(k % rig.border.size()));
-    }
-    ++lineCount;
-  }
-  const vtkIdType frustumLines = lineCount;
-  if (this->MirrorOutline)
-  {
-    for (const std::vector<int>& loop : rig.outlines)
-    {
-      lines->InsertNextCell(static_cast<vtkIdType>(loop.size()) + 1);
-      for (std::size_t k = 0; k <= loop.size(); ++k)
-      {
-        lines->InsertCellPoint(mirrorStart + loop[k % loop.size()]);
-      }
-      ++lineCount;
-    }
-  }
-  polys->AllocateEstimate(static_cast<vtkIdType>(rig.mirrorTriangles.size()), 3);
-  for (const auto& t : rig.mirrorTriangles)
-  {
-    const vtkIdType ids[3] = { mirrorStart + t[0], mirrorStart + t[1], mirrorStart + t[2] };
-    polys->InsertNextCell(3, ids);
-  }
-
+  // Points (the centre, the frustum's far border, the mirror) and cells, part by part.
+  vtkNew<vtkPolyData> geometry;
+  const vtkIdType frustumLines = RigToPolyData(rig, this->MirrorOutline != 0, geometry);
+  vtkCellArray* polys = geometry->GetPolys();
+  const vtkIdType lineCount = geometry->GetNumberOfLines();
   vtkNew<vtkIntArray> parts;
   parts->SetName(vtkCatadioptricArrayNames::RigPart);
   parts->SetNumberOfTuples(1 + lineCount + polys->GetNumberOfCells());
@@ -178,11 +199,7 @@ int vtkCatadioptricRigSource::RequestData(
     parts->SetValue(cell++, MIRROR);
   }
 
-  output->SetPoints(points);
-  output->SetVerts(verts);
-  output->SetLines(lines);
-  output->SetPolys(polys);
-  output->GetPointData()->SetNormals(normals);
+  output->ShallowCopy(geometry);
   output->GetCellData()->AddArray(parts);
   output->GetCellData()->SetActiveScalars(vtkCatadioptricArrayNames::RigPart);
   camera->WriteToFieldData(output->GetFieldData());

@@ -1,5 +1,6 @@
 #include "vtkCatadioptricMeshCheck.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -178,4 +179,24 @@ bool vtkCatadioptricMeshCheck::CheckArraySizes(vtkPolyData* mesh, std::string& e
 bool vtkCatadioptricMeshCheck::Check(vtkPolyData* mesh, std::string& error)
 {
   return CheckPointIds(mesh, error) && CheckArraySizes(mesh, error);
+}
+
+bool vtkCatadioptricMeshCheck::InputAndOutput(vtkAlgorithm* filter,
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector, vtkPolyData*& input,
+  vtkPolyData*& output)
+{
+  input = vtkPolyData::GetData(inputVector[0]);
+  output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorWithObjectMacro(filter, "Input and output must be vtkPolyData.");
+    return false;
+  }
+  std::string error;
+  if (!Check(input, error))
+  {
+    vtkErrorWithObjectMacro(filter, "Bad input mesh: " << error);
+    return false;
+  }
+  return true;
 }

@@ -23,8 +23,10 @@
 
 #include <string> // for std::string
 
+class vtkAlgorithm;
 class vtkCellArray;
 class vtkDataArray;
+class vtkInformationVector;
 class vtkPolyData;
 
 class CATADIOPTRICARCOMMON_EXPORT vtkCatadioptricMeshCheck
@@ -35,6 +37,12 @@ public:
   /// every cell-data array at least one per cell. Otherwise false, with a sentence naming the
   /// problem in `error` (e.g. "cell 12 names point 99, but the mesh has 8 points (ids 0 to 7)").
   static bool Check(vtkPolyData* mesh, std::string& error);
+
+  /// A polydata filter's first step in RequestData: its input (port 0) and output, the input
+  /// checked by Check(). False, with the error reported by `filter` ("Input and output must be
+  /// vtkPolyData." or "Bad input mesh: ..."), when either is missing or the input fails.
+  static bool InputAndOutput(vtkAlgorithm* filter, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector, vtkPolyData*& input, vtkPolyData*& output);
 
   /// The point ids' check alone.
   static bool CheckPointIds(vtkPolyData* mesh, std::string& error);
