@@ -63,28 +63,27 @@ void catar::DepthOrder::Sort(
   std::vector<std::uint64_t> anyOne(static_cast<size_t>(nParts), 0);
   std::vector<std::uint64_t> allOnes(static_cast<size_t>(nParts), ~std::uint64_t(0));
   Cell* scratch = this->Scratch.data();
-  catar::parallel::For(
-    0, nParts, 1, std::max(this->Threads, 1), [&](std::int64_t p0, std::int64_t p1) {
-      for (std::int64_t p = p0; p < p1; ++p)
+  catar::parallel::For(0, nParts, 1, this->LoopThreads(), [&](std::int64_t p0, std::int64_t p1) {
+    for (std::int64_t p = p0; p < p1; ++p)
+    {
+      const std::int64_t b = n * p / nParts, e = n * (p + 1) / nParts;
+      std::int64_t k = b;
+      std::uint64_t any = 0, all = ~std::uint64_t(0);
+      for (std::int64_t c = b; c < e; ++c)
       {
-        const std::int64_t b = n * p / nParts, e = n * (p + 1) / nParts;
-        std::int64_t k = b;
-        std::uint64_t any = 0, all = ~std::uint64_t(0);
-        for (std::int64_t c = b; c < e; ++c)
+        if (!keep || keep[c])
         {
-          if (!keep || keep[c])
-          {
-            const std::uint64_t key = FarToNearKey(depth[c]);
-            scratch[k++] = { key, c };
-            any |= key;
-            all &= key;
-          }
+          const std::uint64_t key = FarToNearKey(depth[c]);
+          scratch[k++] = { key, c };
+          any |= key;
+          all &= key;
         }
-        this->Parts[p] = { b, k - b };
-        anyOne[p] = any;
-        allOnes[p] = all;
       }
-    });
+      this->Parts[p] = { b, k - b };
+      anyOne[p] = any;
+      allOnes[p] = all;
+    }
+  });
   std::int64_t kept = 0;
   std::uint64_t differ = 0;
   {
@@ -141,8 +140,8 @@ void catar::DepthOrder::Sort(
     {
       to[p] = to[p - 1] + this->Parts[p - 1].count;
     }
-    catar::parallel::For(0, static_cast<std::int64_t>(this->Parts.size()), 1,
-      std::max(this->Threads, 1), [&](std::int64_t p0, std::int64_t p1) {
+    catar::parallel::For(0, static_cast<std::int64_t>(this->Parts.size()), 1, this->LoopThreads(),
+      [&](std::int64_t p0, std::int64_t p1) {
         for (std::int64_t p = p0; p < p1; ++p)
         {
           const Range& r = this->Parts[p];
@@ -162,18 +161,17 @@ void catar::DepthOrder::Pass(const Cell* from, Cell* to, int shift, int width)
   const std::uint64_t mask = (std::uint64_t(1) << width) - 1;
   this->Histograms.assign(static_cast<size_t>(nParts) * kBuckets, 0);
   std::uint32_t* histograms = this->Histograms.data();
-  catar::parallel::For(
-    0, nParts, 1, std::max(this->Threads, 1), [&](std::int64_t p0, std::int64_t p1) {
-      for (std::int64_t p = p0; p < p1; ++p)
+  catar::parallel::For(0, nParts, 1, this->LoopThreads(), [&](std::int64_t p0, std::int64_t p1) {
+    for (std::int64_t p = p0; p < p1; ++p)
+    {
+      std::uint32_t* count = histograms + p * kBuckets;
+      const Range& r = this->Parts[p];
+      for (const Cell* c = from + r.begin; c != from + r.begin + r.count; ++c)
       {
-        std::uint32_t* count = histograms + p * kBuckets;
-        const Range& r = this->Parts[p];
-        for (const Cell* c = from + r.begin; c != from + r.begin + r.count; ++c)
-        {
-          ++count[(c->key >> shift) & mask];
-        }
+        ++count[(c->key >> shift) & mask];
       }
-    });
+    }
+  });
   // Each part's first place in each bucket: buckets in order, parts in order within a bucket.
   std::uint32_t sum = 0;
   for (std::size_t b = 0; b < kBuckets; ++b)
@@ -186,18 +184,17 @@ void catar::DepthOrder::Pass(const Cell* from, Cell* to, int shift, int width)
       sum += c;
     }
   }
-  catar::parallel::For(
-    0, nParts, 1, std::max(this->Threads, 1), [&](std::int64_t p0, std::int64_t p1) {
-      for (std::int64_t p = p0; p < p1; ++p)
+  catar::parallel::For(0, nParts, 1, this->LoopThreads(), [&](std::int64_t p0, std::int64_t p1) {
+    for (std::int64_t p = p0; p < p1; ++p)
+    {
+      std::uint32_t* place = histograms + p * kBuckets;
+      const Range& r = this->Parts[p];
+      for (const Cell* c = from + r.begin; c != from + r.begin + r.count; ++c)
       {
-        std::uint32_t* place = histograms + p * kBuckets;
-        const Range& r = this->Parts[p];
-        for (const Cell* c = from + r.begin; c != from + r.begin + r.count; ++c)
-        {
-          to[place[(c->key >> shift) & mask]++] = *c;
-        }
+        to[place[(c->key >> shift) & mask]++] = *c;
       }
-    });
+    }
+  });
 }
 
 // The runs of Cells whose high 32 bits tie, sorted by the whole key, stably (few and short in
@@ -221,36 +218,35 @@ void catar::DepthOrder::SettleTies()
     }
     start[p] = b;
   }
-  catar::parallel::For(
-    0, nParts, 1, std::max(this->Threads, 1), [&](std::int64_t p0, std::int64_t p1) {
-      for (std::int64_t p = p0; p < p1; ++p)
+  catar::parallel::For(0, nParts, 1, this->LoopThreads(), [&](std::int64_t p0, std::int64_t p1) {
+    for (std::int64_t p = p0; p < p1; ++p)
+    {
+      for (std::int64_t b = start[p]; b < start[p + 1];)
       {
-        for (std::int64_t b = start[p]; b < start[p + 1];)
+        std::int64_t e = b + 1;
+        while (e < n && tiesPrevious(e))
         {
-          std::int64_t e = b + 1;
-          while (e < n && tiesPrevious(e))
-          {
-            ++e;
-          }
-          if (e - b > 16)
-          {
-            std::stable_sort(cells + b, cells + e, ByKey);
-          }
-          else
-          {
-            for (std::int64_t i = b + 1; i < e; ++i) // insertion sort: stable
-            {
-              const Cell c = cells[i];
-              std::int64_t j = i;
-              for (; j > b && c.key < cells[j - 1].key; --j)
-              {
-                cells[j] = cells[j - 1];
-              }
-              cells[j] = c;
-            }
-          }
-          b = e;
+          ++e;
         }
+        if (e - b > 16)
+        {
+          std::stable_sort(cells + b, cells + e, ByKey);
+        }
+        else
+        {
+          for (std::int64_t i = b + 1; i < e; ++i) // insertion sort: stable
+          {
+            const Cell c = cells[i];
+            std::int64_t j = i;
+            for (; j > b && c.key < cells[j - 1].key; --j)
+            {
+              cells[j] = cells[j - 1];
+            }
+            cells[j] = c;
+          }
+        }
+        b = e;
       }
-    });
+    }
+  });
 }

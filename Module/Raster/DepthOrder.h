@@ -69,6 +69,9 @@ private:
     std::int64_t count = 0;
   };
   std::int64_t NumberOfParts(std::int64_t n);
+  // The threads of this Sort's loops: ThreadCount()'s answer once NumberOfParts asked for it (a
+  // loop over more than one part), else 1 (a loop over one part runs inline).
+  int LoopThreads() const { return this->Threads > 0 ? this->Threads : 1; }
   void Pass(const Cell* from, Cell* to, int shift, int width);
   void SettleTies();
 
