@@ -1,12 +1,12 @@
 #include "vtkCatadioptricCompositor.h"
 
 #include "CameraModel.h"
+#include "EdgeSamples.h"
 #include "Rasterizer.h"
 
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
-#include "vtkCatadioptricEdgeSamples.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
@@ -74,7 +74,7 @@ catar::IdView TopRowFirst(catar::RasterId* ids, int width, int height)
 // the bins' order) write depth and the others only test it; without (depthTest false: painter
 // order with the depths kept for the PathLength output) every triangle writes its depth.
 template<typename Background>
-void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& bins,
+void DrawBands(const catar::ImageView& view, const catar::TriangleBins& bins,
   const std::vector<catar::TextureView>& textures, const Background& background, float* depth,
   bool depthTest, catar::RasterId* ids)
 {
@@ -110,7 +110,7 @@ void DrawBands(const catar::ImageView& view, const vtkCatadioptricTriangleBins& 
       }
     }
     catar::SnappedTriangle t;
-    vtkCatadioptricTriangleBins::Info info;
+    catar::TriangleBins::Info info;
     bins.ForEachTriangle(b, [&](std::uint32_t ref) {
       bins.Get(ref, t, info);
       catar::rasterizeSnappedTriangle(view, t, band,
@@ -266,7 +266,7 @@ catar::RasterId* IdImage(vtkSmartPointer<vtkTypeInt64Array>& kept, vtkImageData*
 // Antialias: redraws the edge pixels of the drawn image from samples (ids: the id buffer, VTK row
 // order), each sample's background from the frame (frameComponents a pixel) or the colour.
 // Returns the number of edge pixels.
-vtkIdType DrawEdges(vtkCatadioptricEdgeSamples& edges, const vtkCatadioptricTriangleBins& bins,
+vtkIdType DrawEdges(catar::EdgeSamples& edges, const catar::TriangleBins& bins,
   const catar::ImageView& view, catar::RasterId* ids,
   const std::vector<catar::TextureView>& textures, const std::vector<char>& opaqueTexture,
   const unsigned char* frameData, int frameComponents, const double* color, bool depthTest)
@@ -287,7 +287,7 @@ vtkIdType DrawEdges(vtkCatadioptricEdgeSamples& edges, const vtkCatadioptricTria
         vtkCatadioptricImageSupport::FillColorPixels(color, 0, 1, rgba);
       }
     },
-    depthTest);
+    depthTest, vtkCatadioptricParallel::GetNumberOfThreads());
   return edges.GetNumberOfEdgePixels();
 }
 
@@ -305,7 +305,7 @@ std::vector<char> OpaqueTextures(const std::vector<catar::TextureView>& textures
 
 vtkCatadioptricCompositor::vtkCatadioptricCompositor()
   : Bins(new vtkCatadioptricTriangleBins)
-  , Edges(new vtkCatadioptricEdgeSamples)
+  , Edges(new catar::EdgeSamples)
 {
 }
 

@@ -51,7 +51,7 @@
  * Anti-aliasing (Antialias, off by default): edge pixels -- silhouettes against the frame and
  * edges where one surface passes in front of another -- get the mean of AntialiasSamples x
  * AntialiasSamples samples, drawn with the same rules; interior pixels keep their centre sample
- * (see vtkCatadioptricEdgeSamples).
+ * (see catar::EdgeSamples, Module/Raster/EdgeSamples.h).
  *
  * Without a frame the output is BackgroundColor, of ImageSize if set, else of the camera's image
  * size (from the meshes' field data).
@@ -66,8 +66,11 @@
 #include <memory> // for std::unique_ptr
 #include <vector> // for std::vector
 
-class vtkCatadioptricEdgeSamples;
 class vtkCatadioptricTriangleBins;
+namespace catar
+{
+class EdgeSamples;
+}
 class vtkTypeInt64Array;
 
 class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricCompositor : public vtkCatadioptricImageSink
@@ -141,7 +144,7 @@ protected:
   // The triangles of an execution, binned into bands; scratch kept between executions.
   std::unique_ptr<vtkCatadioptricTriangleBins> Bins;
   // Antialias: the edge pixels' samples, and the id buffer when OutputVisibleTriangle is off.
-  std::unique_ptr<vtkCatadioptricEdgeSamples> Edges;
+  std::unique_ptr<catar::EdgeSamples> Edges;
   std::vector<long long> EdgeIds;
 
 private:

@@ -1,13 +1,15 @@
-#include "vtkCatadioptricEdgeSamples.h"
+#include "EdgeSamples.h"
 
-#include "vtkCatadioptricParallel.h"
-#include "vtkCatadioptricTriangleBins.h"
+#include "Parallel.h"
+#include "TriangleBins.h"
 
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
 #include <optional>
 
+namespace catar
+{
 namespace
 {
 // Whether pixels p and q (RGBA) that show triangles ip and iq make an edge.
@@ -23,7 +25,7 @@ bool IsEdge(catar::RasterId ip, catar::RasterId iq, const std::uint8_t* p, const
   }
   for (int k = 0; k < 3; ++k)
   {
-    if (std::abs(int(p[k]) - int(q[k])) > vtkCatadioptricEdgeSamples::ContrastThreshold)
+    if (std::abs(int(p[k]) - int(q[k])) > EdgeSamples::ContrastThreshold)
     {
       return true;
     }
@@ -107,9 +109,9 @@ void ForEdgePixels(const PixelBox& box, const catar::PixelRect& rect,
 } // namespace
 
 // What drawing a band's samples reads.
-struct vtkCatadioptricEdgeSamples::Context
+struct EdgeSamples::Context
 {
-  const vtkCatadioptricTriangleBins& Bins;
+  const TriangleBins& Bins;
   const std::vector<catar::TextureView>& Textures;
   const std::vector<char>& OpaqueTextures;
   const Background& Fill;
@@ -118,7 +120,7 @@ struct vtkCatadioptricEdgeSamples::Context
 };
 
 // Every sample starts as the background; the band's triangles are drawn in drawing order.
-void vtkCatadioptricEdgeSamples::DrawInOrder(const Context& c, int b, Band& band, bool depth)
+void EdgeSamples::DrawInOrder(const Context& c, int b, Band& band, bool depth)
 {
   const int samples = c.Samples;
   const int perPixel = samples * samples;
@@ -145,7 +147,7 @@ void vtkCatadioptricEdgeSamples::DrawInOrder(const Context& c, int b, Band& band
   catar::ImageView block{ nullptr, samples, samples, 4 * samples };
   catar::DepthView blockDepth{ nullptr, samples, samples, samples };
   catar::SnappedTriangle t;
-  vtkCatadioptricTriangleBins::Info info;
+  TriangleBins::Info info;
   c.Bins.ForEachTriangle(b, [&](std::uint32_t ref) {
     std::int32_t tx[3], ty[3];
     c.Bins.GetPositions(ref, tx, ty);
@@ -177,7 +179,7 @@ void vtkCatadioptricEdgeSamples::DrawInOrder(const Context& c, int b, Band& band
 // drawn once, by the first that covers it; hidden triangles cost a coverage test. The samples no
 // triangle covers are the background. False, at the first triangle that is not opaque (which
 // blends with what is behind it): the band is then drawn in order.
-bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& band)
+bool EdgeSamples::DrawFrontToBack(const Context& c, int b, Band& band)
 {
   const int samples = c.Samples;
   const int perPixel = samples * samples;
@@ -189,7 +191,7 @@ bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& 
   std::uint8_t scratch[4 * catar::kMaxEdgeSamples * catar::kMaxEdgeSamples];
   const catar::ImageView block{ scratch, samples, samples, 4 * samples };
   catar::SnappedTriangle t;
-  vtkCatadioptricTriangleBins::Info info;
+  TriangleBins::Info info;
   bool opaque = true;
   c.Bins.ForEachTriangleReverse(b, [&](std::uint32_t ref) {
     if (!opaque)
@@ -291,9 +293,9 @@ bool vtkCatadioptricEdgeSamples::DrawFrontToBack(const Context& c, int b, Band& 
   return true;
 }
 
-void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar::IdView& ids,
-  const vtkCatadioptricTriangleBins& bins, const std::vector<catar::TextureView>& textures,
-  const std::vector<char>& opaqueTextures, const Background& background, bool depth)
+void EdgeSamples::Draw(const catar::ImageView& view, const catar::IdView& ids,
+  const TriangleBins& bins, const std::vector<catar::TextureView>& textures,
+  const std::vector<char>& opaqueTextures, const Background& background, bool depth, int threads)
 {
   const int width = view.width;
   const int height = view.height;
@@ -310,7 +312,7 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
 
   // The edge pixels of the bands that hold triangles (a pixel of another band has no sample any
   // triangle covers). Read-only on the image: every pixel looks at its four neighbours.
-  vtkCatadioptricParallel::ForEachIndex(0, nBands, [&](vtkIdType i) {
+  parallel::ForEachIndex(0, nBands, nBands > 1 ? threads : 1, [&](std::int64_t i) {
     const int b = bins.GetBandByLoad(static_cast<int>(i));
     Band& band = this->Bands[b];
     band.Columns.clear();
@@ -410,7 +412,7 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
 
   // The samples of each band's edge pixels, then their mean. Writes only the band's own pixels.
   const Context context{ bins, textures, opaqueTextures, background, samples, width };
-  vtkCatadioptricParallel::ForEachIndex(0, nBands, [&](vtkIdType i) {
+  parallel::ForEachIndex(0, nBands, nBands > 1 ? threads : 1, [&](std::int64_t i) {
     const int b = bins.GetBandByLoad(static_cast<int>(i));
     Band& band = this->Bands[b];
     const size_t n = band.Columns.size();
@@ -448,10 +450,11 @@ void vtkCatadioptricEdgeSamples::Draw(const catar::ImageView& view, const catar:
   });
   for (const Band& band : this->Bands)
   {
-    this->NumberOfEdgePixels += static_cast<vtkIdType>(band.Columns.size());
+    this->NumberOfEdgePixels += static_cast<std::int64_t>(band.Columns.size());
     if (!band.Columns.empty())
     {
       this->NumberOfUnsampled += std::count(band.Skip.begin(), band.Skip.end(), std::uint8_t(1));
     }
   }
 }
+} // namespace catar

@@ -1,9 +1,10 @@
 /**
- * @class   vtkCatadioptricEdgeSamples
+ * @class   catar::EdgeSamples
  * @brief   the compositor's anti-aliasing: edge pixels redrawn from S x S samples
  *
- * Not a vtkObject (C++ only, not wrapped). After vtkCatadioptricCompositor has drawn a frame at
- * pixel centres, Draw() finds the edge pixels and gives each the mean of S x S samples:
+ * CatadioptricAR Core (Raster). After vtkCatadioptricCompositor has drawn a frame at pixel
+ * centres from catar::TriangleBins, Draw() finds the edge pixels and gives each the mean of S x S
+ * samples:
  *  - a pixel is an edge pixel when one of its eight neighbours shows another triangle (the id
  *    buffer) and either of the two shows no triangle, or their colours differ by more than
  *    ContrastThreshold levels in a channel: silhouettes against the frame, and edges where one
@@ -25,20 +26,20 @@
  * A vertex more than 2^18 pixels from an edge pixel (catar::rasterizeSamples) leaves that pixel
  * as drawn at its centre.
  */
-#ifndef vtkCatadioptricEdgeSamples_h
-#define vtkCatadioptricEdgeSamples_h
+#ifndef catarEdgeSamples_h
+#define catarEdgeSamples_h
 
-#include "CatadioptricARRenderingModule.h" // for export macro
-#include "Rasterizer.h"                    // for catar views
-#include "vtkType.h"                       // for vtkIdType
+#include "Rasterizer.h" // for catar views
 
 #include <cstdint>    // for std::uint8_t
 #include <functional> // for std::function
 #include <vector>     // for std::vector
 
-class vtkCatadioptricTriangleBins;
+namespace catar
+{
+class TriangleBins;
 
-class CATADIOPTRICARRENDERING_EXPORT vtkCatadioptricEdgeSamples
+class EdgeSamples
 {
 public:
   /// Colour difference (0-255 levels, any of R, G, B) above which two neighbouring pixels that
@@ -50,14 +51,15 @@ public:
 
   /// Redraws the edge pixels of view (drawn at pixel centres from bins, ids written into ids).
   /// opaqueTextures: per texture, whether every texel's alpha is 255. depth: with a depth buffer
-  /// (opaque triangles write depth per sample, the others test it).
-  void Draw(const catar::ImageView& view, const catar::IdView& ids,
-    const vtkCatadioptricTriangleBins& bins, const std::vector<catar::TextureView>& textures,
-    const std::vector<char>& opaqueTextures, const Background& background, bool depth);
+  /// (opaque triangles write depth per sample, the others test it). threads: the loops' threads
+  /// (Parallel.h; < 1: the default).
+  void Draw(const catar::ImageView& view, const catar::IdView& ids, const TriangleBins& bins,
+    const std::vector<catar::TextureView>& textures, const std::vector<char>& opaqueTextures,
+    const Background& background, bool depth, int threads);
 
   /// Edge pixels of the last Draw(), and those left as drawn at their centres (a vertex too far).
-  vtkIdType GetNumberOfEdgePixels() const { return this->NumberOfEdgePixels; }
-  vtkIdType GetNumberOfUnsampledPixels() const { return this->NumberOfUnsampled; }
+  std::int64_t GetNumberOfEdgePixels() const { return this->NumberOfEdgePixels; }
+  std::int64_t GetNumberOfUnsampledPixels() const { return this->NumberOfUnsampled; }
 
 private:
   // One band's edge pixels: columns, row by row (Rows[r] .. Rows[r + 1] for row y0 + r).
@@ -75,8 +77,10 @@ private:
   static void DrawInOrder(const Context& c, int b, Band& band, bool depth);
   static bool DrawFrontToBack(const Context& c, int b, Band& band);
   std::vector<Band> Bands;
-  vtkIdType NumberOfEdgePixels = 0;
-  vtkIdType NumberOfUnsampled = 0;
+  std::int64_t NumberOfEdgePixels = 0;
+  std::int64_t NumberOfUnsampled = 0;
 };
+
+} // namespace catar
 
 #endif
