@@ -2,7 +2,7 @@
 
 #include "CameraModel.h"
 #include "ImageTessellation.h"
-#include "Polygons.h"
+#include "PolygonProjection.h"
 #include "Projector.h"
 
 #include "vtkCatadioptricArrayNames.h"
@@ -24,14 +24,12 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
-#include <Eigen/Geometry> // cross products
-
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkCatadioptricProjection);
@@ -42,22 +40,12 @@ namespace
 // few hundred points; smaller meshes are projected inline.
 constexpr vtkIdType kPointGrain = 512;
 
-// What the cells read of each vertex, in one cache line: the cells visit their vertices in no
-// particular order, and four arrays would cost four cache misses per vertex.
-struct alignas(64) VertexRecord
-{
-  double point[3]; // world
-  double pixel[2]; // image coordinates
-  float mirror[3]; // reflection point (camera frame): where the centroids' Newton starts
-  unsigned char visible;
-};
-
 // The point arrays the projection writes (ImageCoordinates, MirrorPoint, PathLength,
 // ProjectionStatus, Visible), with the vertex records the cells read, filled point by point.
 struct PointOutputs
 {
   explicit PointOutputs(vtkIdType n)
-    : Records(new VertexRecord[std::max<vtkIdType>(n, 1)])
+    : Records(new catar::VertexRecord[std::max<vtkIdType>(n, 1)])
   {
     this->Pixels->SetName(vtkCatadioptricArrayNames::ImageCoordinates);
     this->Pixels->SetNumberOfComponents(2);
@@ -90,14 +78,7 @@ struct PointOutputs
     this->Pl[i] = q.pathLength;
     this->St[i] = static_cast<unsigned char>(q.status);
     this->Vi[i] = catar::HasProjection(q.status) ? 1 : 0;
-    VertexRecord& r = this->Records[i];
-    std::copy(p.data(), p.data() + 3, r.point);
-    std::copy(q.pixel.data(), q.pixel.data() + 2, r.pixel);
-    for (int k = 0; k < 3; ++k)
-    {
-      r.mirror[k] = static_cast<float>(q.mirrorPoint[k]);
-    }
-    r.visible = this->Vi[i];
+    this->Records[i].Set(p, q);
   }
 
   // The vertex pass: the n points projected in parallel runs, each point's search started from
@@ -126,7 +107,7 @@ struct PointOutputs
       a->Resize(n);
       a->SetNumberOfTuples(n);
     }
-    std::unique_ptr<VertexRecord[]> grown(new VertexRecord[n]);
+    std::unique_ptr<catar::VertexRecord[]> grown(new catar::VertexRecord[n]);
     std::copy(this->Records.get(), this->Records.get() + kept, grown.get());
     this->Records.swap(grown);
     this->Bind();
@@ -145,7 +126,7 @@ struct PointOutputs
   vtkNew<vtkDoubleArray> Path;
   vtkNew<vtkUnsignedCharArray> Status;
   vtkNew<vtkUnsignedCharArray> Visible;
-  std::unique_ptr<VertexRecord[]> Records;
+  std::unique_ptr<catar::VertexRecord[]> Records;
 
 private:
   void Bind()
@@ -161,203 +142,6 @@ private:
   double* Pl = nullptr;
   unsigned char* St = nullptr;
   unsigned char* Vi = nullptr;
-};
-
-// How many cells ahead the cell loop asks for its vertices' records.
-constexpr vtkIdType kPrefetchCells = 8;
-
-// Projects the polygons' centroids and decides cell visibility; runs over a range of polygons.
-struct CellWorker
-{
-  // For the camera of `projector`: its image size and pose.
-  CellWorker(const catar::Projector& projector, bool cullBackFaces)
-    : Projector(&projector)
-    , Width(projector.GetModel().intrinsics.width)
-    , Height(projector.GetModel().intrinsics.height)
-    , CullBackFaces(cullBackFaces)
-    , CameraToWorldRotation(projector.GetPose().rotationT)
-    , CameraCentre(projector.GetPose().centre)
-  {
-  }
-
-  const catar::Projector* Projector;
-  const VertexRecord* Vertices = nullptr;
-  double* Depth = nullptr;
-  double* CentroidMirror = nullptr;
-  unsigned char* Visible = nullptr;
-  vtkIdType CellOffset = 0; // cell-data index of the first polygon
-  double Width;
-  double Height;
-  bool CullBackFaces;
-  catar::Mat3 CameraToWorldRotation; // R^T
-  catar::Vec3 CameraCentre;          // -R^T T: the camera centre in world coordinates
-  // Not null: set when a triangle needs the per-frame tessellation's closer look
-  // (catar::NeedsFateCheck with these options), the quick pass of
-  // vtkCatadioptricTessellatedMesh::Refine done here, on the vertices this pass reads anyway.
-  std::atomic<bool>* NeedsFateCheck = nullptr;
-  catar::TessellationOptions Tessellation;
-
-  // Polygon c has the points conn[off[c]], ..., conn[off[c + 1] - 1].
-  template<typename IdT>
-  void operator()(const IdT* off, const IdT* conn, vtkIdType begin, vtkIdType end) const
-  {
-    Batch batch(this->Projector->GetBatchSize());
-    bool needsFateCheck = false;
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      if (c + kPrefetchCells < end)
-      {
-        // The vertices of a cell a few ahead: their cache misses overlap this cell's work.
-        for (IdT k = off[c + kPrefetchCells]; k < off[c + kPrefetchCells + 1]; ++k)
-        {
-          vtkCatadioptricParallel::Prefetch(this->Vertices + conn[k]);
-        }
-      }
-      const IdT* ids = conn + off[c];
-      const vtkIdType n = static_cast<vtkIdType>(off[c + 1] - off[c]);
-      const vtkIdType out = this->CellOffset + c;
-      this->Depth[out] = 0.0;
-      this->Visible[out] = 0;
-      std::fill(this->CentroidMirror + 3 * out, this->CentroidMirror + 3 * out + 3, 0.0);
-      if (n < 3)
-      {
-        continue;
-      }
-      catar::Vec3 centroid = catar::Vec3::Zero();
-      catar::Vec3 guess = catar::Vec3::Zero();
-      const double* lp = this->Vertices[ids[n - 1]].point;
-      catar::NewellNormal newell(catar::Vec3(lp[0], lp[1], lp[2])); // |normal| = 2 area
-      bool all = true;
-      double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-      for (vtkIdType k = 0; k < n; ++k)
-      {
-        const VertexRecord& v = this->Vertices[ids[k]];
-        if (!v.visible)
-        {
-          all = false;
-          break;
-        }
-        const catar::Vec3 p(v.point[0], v.point[1], v.point[2]);
-        centroid += p;
-        if (this->CullBackFaces)
-        {
-          newell.Add(p);
-        }
-        guess += catar::Vec3(v.mirror[0], v.mirror[1], v.mirror[2]);
-        xmin = std::min(xmin, v.pixel[0]);
-        xmax = std::max(xmax, v.pixel[0]);
-        ymin = std::min(ymin, v.pixel[1]);
-        ymax = std::max(ymax, v.pixel[1]);
-      }
-      if (this->NeedsFateCheck && n == 3 && !needsFateCheck)
-      {
-        const double* const px[3] = { this->Vertices[ids[0]].pixel, this->Vertices[ids[1]].pixel,
-          this->Vertices[ids[2]].pixel };
-        needsFateCheck = catar::NeedsFateCheck(all, px, this->Tessellation);
-      }
-      if (!all)
-      {
-        continue;
-      }
-      centroid /= static_cast<double>(n);
-      guess /= static_cast<double>(n);
-      const catar::Vec3& normal = newell.Sum();
-      if (this->CullBackFaces)
-      {
-        // Facing away from the viewer (the reflection point) by more than a sliver: dropped
-        // before its exact projection. The mean of the vertices' reflection points stands in
-        // for the centroid's; cells within 1e-3 of edge-on wait for the exact one below.
-        const catar::Vec3 toViewer =
-          this->CameraToWorldRotation * guess + this->CameraCentre - centroid;
-        if (normal.dot(toViewer) < -1e-3 * normal.norm() * toViewer.norm())
-        {
-          continue;
-        }
-      }
-      // The centroid reflects next to its vertices: Newton from the mean of their reflection
-      // points converges in one or two steps, to the same answer as either solver. Centroids are
-      // solved a batch at a time (side by side, see Projector::ProjectWorldNear).
-      batch.Add(out, centroid, guess, normal, xmin, xmax, ymin, ymax);
-      if (batch.Full())
-      {
-        this->Finish(batch);
-      }
-    }
-    this->Finish(batch);
-    if (needsFateCheck)
-    {
-      this->NeedsFateCheck->store(true, std::memory_order_relaxed);
-    }
-  }
-
-  // Cells whose centroid is still to be projected.
-  struct Batch
-  {
-    static constexpr int W = catar::Mirror::kMaxBatchSize;
-    explicit Batch(int size)
-      : size(size)
-    {
-    }
-    int size; // the projector's batch size
-    int n = 0;
-    vtkIdType out[W];
-    catar::Vec3 centroid[W], guess[W], normal[W];
-    double bounds[W][4];
-    catar::ProjectedPoint q[W];
-    bool Full() const { return this->n == this->size; }
-    void Add(vtkIdType o, const catar::Vec3& c, const catar::Vec3& g, const catar::Vec3& nrm,
-      double xmin, double xmax, double ymin, double ymax)
-    {
-      this->out[this->n] = o;
-      this->centroid[this->n] = c;
-      this->guess[this->n] = g;
-      this->normal[this->n] = nrm;
-      this->bounds[this->n][0] = xmin;
-      this->bounds[this->n][1] = xmax;
-      this->bounds[this->n][2] = ymin;
-      this->bounds[this->n][3] = ymax;
-      ++this->n;
-    }
-  };
-
-  void Finish(Batch& batch) const
-  {
-    this->Projector->ProjectWorldNear(batch.n, batch.centroid, batch.guess, batch.q, false);
-    for (int k = 0; k < batch.n; ++k)
-    {
-      const catar::ProjectedPoint& q = batch.q[k];
-      const vtkIdType out = batch.out[k];
-      if (!catar::HasProjection(q.status))
-      {
-        continue;
-      }
-      this->Depth[out] = q.pathLength;
-      std::copy(q.mirrorPoint.data(), q.mirrorPoint.data() + 3, this->CentroidMirror + 3 * out);
-      if (this->CullBackFaces &&
-        batch.normal[k].dot(this->CameraToWorldRotation * q.mirrorPoint + this->CameraCentre -
-          batch.centroid[k]) <= 0.0)
-      {
-        continue;
-      }
-      const double* b = batch.bounds[k];
-      const bool overlapsImage =
-        b[1] >= -0.5 && b[3] >= -0.5 && b[0] < this->Width - 0.5 && b[2] < this->Height - 0.5;
-      this->Visible[out] = overlapsImage ? 1 : 0;
-    }
-    batch.n = 0;
-  }
-};
-
-struct CellDispatch
-{
-  template<typename CellStateT>
-  void operator()(CellStateT& state, const CellWorker& worker) const
-  {
-    const auto* off = state.GetOffsets()->GetPointer(0);
-    const auto* conn = state.GetConnectivity()->GetPointer(0);
-    vtkCatadioptricParallel::For(0, state.GetNumberOfCells(), kPointGrain,
-      [&](vtkIdType b, vtkIdType e) { worker(off, conn, b, e); });
-  }
 };
 
 // A mesh's cell arrays: CentroidDepth, CentroidMirrorPoint and Visible.
@@ -382,11 +166,40 @@ struct CellArrays
     this->Visible->SetName(vtkCatadioptricArrayNames::Visible);
     this->Visible->SetNumberOfTuples(n);
   }
+
+  // Where catar::PolygonProjection writes, its first polygon at cell firstPoly.
+  catar::PolygonOutputs Outputs(vtkIdType firstPoly) const
+  {
+    catar::PolygonOutputs out;
+    out.depth = this->Depth->GetPointer(0);
+    out.centroidMirror = this->Mirror->GetPointer(0);
+    out.visible = this->Visible->GetPointer(0);
+    out.cellOffset = firstPoly;
+    return out;
+  }
 };
 
+// Calls f(polygons) with `mesh`'s polygons as catar::PolygonsView, vertices[i] the record of
+// point i.
+template<typename F>
+void WithPolygons(vtkPolyData* mesh, const catar::VertexRecord* vertices, F&& f)
+{
+  mesh->GetPolys()->Visit([&](auto& state) {
+    using Index = typename std::remove_const<
+      typename std::remove_reference<decltype(*state.GetOffsets()->GetPointer(0))>::type>::type;
+    catar::PolygonsView<Index> polygons;
+    polygons.offsets = state.GetOffsets()->GetPointer(0);
+    polygons.connectivity = state.GetConnectivity()->GetPointer(0);
+    polygons.numberOfPolygons = state.GetNumberOfCells();
+    polygons.vertices = vertices;
+    f(polygons);
+  });
+}
+
 // Projects the centroids of `mesh`'s polygons (whose points' records are `vertices`) and decides
-// their visibility with `worker`'s settings; zeros for its other cells.
-CellArrays ProjectCells(vtkPolyData* mesh, CellWorker& worker, const VertexRecord* vertices)
+// their visibility (catar::PolygonProjection); zeros for its other cells.
+CellArrays ProjectCells(vtkPolyData* mesh, const catar::PolygonProjection& polygons,
+  const catar::VertexRecord* vertices, int threads, std::atomic<bool>* needsFateCheck)
 {
   const vtkIdType nCells = mesh->GetNumberOfCells();
   CellArrays out(nCells);
@@ -404,67 +217,24 @@ CellArrays ProjectCells(vtkPolyData* mesh, CellWorker& worker, const VertexRecor
   }
   if (polysWritten)
   {
-    worker.Vertices = vertices;
-    worker.Depth = out.Depth->GetPointer(0);
-    worker.CentroidMirror = out.Mirror->GetPointer(0);
-    worker.Visible = out.Visible->GetPointer(0);
-    worker.CellOffset = firstPoly;
-    mesh->GetPolys()->Visit(CellDispatch{}, worker);
+    WithPolygons(mesh, vertices, [&](const auto& view) {
+      polygons.Project(view, out.Outputs(firstPoly), threads, needsFateCheck);
+    });
   }
   return out;
 }
 
 // The cell arrays of `mesh`, refined from the mesh `first` was computed for: a cell copied as it
 // is (sources[c] >= 0, its cell there) keeps its values, the pieces (-1) are projected.
-CellArrays ProjectPieces(vtkPolyData* mesh, CellWorker& worker, const VertexRecord* vertices,
-  const CellArrays& first, const std::vector<vtkIdType>& sources)
+CellArrays ProjectPieces(vtkPolyData* mesh, const catar::PolygonProjection& polygons,
+  const catar::VertexRecord* vertices, const CellArrays& first,
+  const std::vector<std::int64_t>& sources, int threads)
 {
-  const vtkIdType nCells = mesh->GetNumberOfCells();
-  CellArrays out(nCells);
-  const double* fromDepth = first.Depth->GetPointer(0);
-  const double* fromMirror = first.Mirror->GetPointer(0);
-  const unsigned char* fromVisible = first.Visible->GetPointer(0);
-  double* depth = out.Depth->GetPointer(0);
-  double* mirror = out.Mirror->GetPointer(0);
-  unsigned char* visible = out.Visible->GetPointer(0);
-  vtkCatadioptricParallel::For(0, nCells, kPointGrain, [&](vtkIdType b, vtkIdType e) {
-    for (vtkIdType c = b; c < e; ++c)
-    {
-      const vtkIdType s = sources[c];
-      depth[c] = s >= 0 ? fromDepth[s] : 0.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        mirror[3 * c + k] = s >= 0 ? fromMirror[3 * s + k] : 0.0;
-      }
-      visible[c] = s >= 0 ? fromVisible[s] : 0;
-    }
-  });
-  // The pieces: runs of polygons.
+  CellArrays out(mesh->GetNumberOfCells());
   const vtkIdType firstPoly = mesh->GetNumberOfVerts() + mesh->GetNumberOfLines();
-  const vtkIdType nPolys = mesh->GetNumberOfPolys();
-  worker.Vertices = vertices;
-  worker.Depth = depth;
-  worker.CentroidMirror = mirror;
-  worker.Visible = visible;
-  worker.CellOffset = firstPoly;
-  mesh->GetPolys()->Visit([&](auto& state) {
-    const auto* off = state.GetOffsets()->GetPointer(0);
-    const auto* conn = state.GetConnectivity()->GetPointer(0);
-    for (vtkIdType p = 0; p < nPolys;)
-    {
-      if (sources[firstPoly + p] >= 0)
-      {
-        ++p;
-        continue;
-      }
-      vtkIdType e = p + 1;
-      while (e < nPolys && sources[firstPoly + e] < 0)
-      {
-        ++e;
-      }
-      worker(off, conn, p, e);
-      p = e;
-    }
+  WithPolygons(mesh, vertices, [&](const auto& view) {
+    polygons.ProjectPieces(view, mesh->GetNumberOfCells(), sources.data(), first.Outputs(0),
+      out.Outputs(firstPoly), threads);
   });
   return out;
 }
@@ -531,10 +301,12 @@ int vtkCatadioptricProjection::RequestData(
   {
     vtkWarningMacro("Triangle strips are not drawn; run vtkTriangleFilter first.");
   }
-  CellWorker worker(projector, this->BackFaceCulling);
-  worker.Tessellation.boundaryTolerance = this->BoundaryTolerance;
-  worker.Tessellation.bendTolerance = this->AdaptiveTolerance;
-  worker.Tessellation.solver = solver;
+  catar::PolygonProjection polygons(projector, this->BackFaceCulling);
+  const int threads = vtkCatadioptricParallel::GetNumberOfThreads();
+  catar::TessellationOptions& tessellation = polygons.Tessellation;
+  tessellation.boundaryTolerance = this->BoundaryTolerance;
+  tessellation.bendTolerance = this->AdaptiveTolerance;
+  tessellation.solver = solver;
 
   // Per-frame tessellation: triangles across the visibility boundary (and, adaptive, those that
   // bend too much) replaced by their pieces; the new points' projections appended. Without a
@@ -543,24 +315,22 @@ int vtkCatadioptricProjection::RequestData(
   // refined, and when a triangle was split its pieces projected (the other cells keep their
   // values). With one, every triangle needs it: the mesh is refined first.
   this->NumberOfSplitTriangles = 0;
-  const bool refineFirst = worker.Tessellation.bendTolerance > 0.0;
+  const bool refineFirst = tessellation.bendTolerance > 0.0;
   const bool polys = nPts > 0 && input->GetNumberOfPolys() > 0;
   std::atomic<bool> needsFateCheck(polys);
   CellArrays cells;
-  std::vector<vtkIdType> sources; // the refined mesh's cells' cells in the input (-1: pieces)
+  std::vector<std::int64_t> sources; // the refined mesh's cells' cells in the input (-1: pieces)
   if (!refineFirst)
   {
-    worker.NeedsFateCheck = &needsFateCheck;
     needsFateCheck = false;
-    cells = ProjectCells(input, worker, out.Records.get());
-    worker.NeedsFateCheck = nullptr;
+    cells = ProjectCells(input, polygons, out.Records.get(), threads, &needsFateCheck);
   }
   if (polys && needsFateCheck)
   {
     catar::Tessellation added;
     this->NumberOfSplitTriangles = vtkCatadioptricTessellatedMesh::Refine(input, projector,
-      worker.Tessellation, out.Status->GetPointer(0), out.Pixels->GetPointer(0),
-      out.Mirror->GetPointer(0), added, output, refineFirst ? nullptr : &sources);
+      tessellation, out.Status->GetPointer(0), out.Pixels->GetPointer(0), out.Mirror->GetPointer(0),
+      added, output, refineFirst ? nullptr : &sources);
     if (this->NumberOfSplitTriangles > 0)
     {
       camera->WriteToFieldData(output->GetFieldData());
@@ -574,12 +344,12 @@ int vtkCatadioptricProjection::RequestData(
   }
   if (refineFirst)
   {
-    cells =
-      ProjectCells(this->NumberOfSplitTriangles > 0 ? output : input, worker, out.Records.get());
+    cells = ProjectCells(this->NumberOfSplitTriangles > 0 ? output : input, polygons,
+      out.Records.get(), threads, nullptr);
   }
   else if (this->NumberOfSplitTriangles > 0)
   {
-    cells = ProjectPieces(output, worker, out.Records.get(), cells, sources);
+    cells = ProjectPieces(output, polygons, out.Records.get(), cells, sources, threads);
   }
   out.AddTo(output->GetPointData());
   vtkCellData* cd = output->GetCellData();

@@ -51,7 +51,7 @@ void WithCoordinates(vtkPoints* points, F&& f)
 // be null): each output cell's input cell, -1 for a piece.
 void Assemble(vtkPolyData* input, const std::vector<std::int64_t>& chosen,
   std::vector<catar::Tessellation>& pieces, catar::Tessellation& added, vtkPolyData* output,
-  std::vector<vtkIdType>* sources)
+  std::vector<std::int64_t>* sources)
 {
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType nPolys = polys->GetNumberOfCells();
@@ -174,7 +174,7 @@ void Assemble(vtkPolyData* input, const std::vector<std::int64_t>& chosen,
 vtkIdType vtkCatadioptricTessellatedMesh::Refine(vtkPolyData* input,
   const catar::Projector& projector, const catar::TessellationOptions& options,
   const unsigned char* status, const double* pixels, const double* mirrorPoints,
-  catar::Tessellation& added, vtkPolyData* output, std::vector<vtkIdType>* sources)
+  catar::Tessellation& added, vtkPolyData* output, std::vector<std::int64_t>* sources)
 {
   vtkCellArray* polys = input->GetPolys();
   const vtkIdType nPolys = polys->GetNumberOfCells();

@@ -14,7 +14,8 @@
 #include "ImageTessellation.h"           // for catar::TessellationOptions
 #include "vtkType.h"                     // for vtkIdType
 
-#include <vector> // for std::vector
+#include <cstdint> // for std::int64_t
+#include <vector>  // for std::vector
 
 class vtkPolyData;
 
@@ -34,7 +35,7 @@ public:
   static vtkIdType Refine(vtkPolyData* input, const catar::Projector& projector,
     const catar::TessellationOptions& options, const unsigned char* status, const double* pixels,
     const double* mirrorPoints, catar::Tessellation& added, vtkPolyData* output,
-    std::vector<vtkIdType>* sources = nullptr);
+    std::vector<std::int64_t>* sources = nullptr);
 };
 
 #endif
