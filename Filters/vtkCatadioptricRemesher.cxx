@@ -54,42 +54,6 @@ bool StopRequested(void* clientData)
   return static_cast<vtkCatadioptricRemesher*>(clientData)->GetAbortExecute() != 0;
 }
 
-// The default bound on the geometric error in PIXEL_TOLERANCE mode: the distance that moves the
-// image by the tolerance where the object is magnified most (its largest image scale over up to
-// 4096 of its points), so that coarsening changes the object's image by at most the tolerance
-// too. Kept between 1e-4 and 2e-2 of the bounding-box diagonal; 0 (the core's default, 1e-3 of
-// the diagonal) when no point is seen.
-double GeometricErrorForTolerance(
-  const catar::mesh::TriangleMesh& mesh, const catar::Projector& projector, double tolerance)
-{
-  if (mesh.points.empty())
-  {
-    return 0.0;
-  }
-  catar::Vec3 lo = mesh.points.front(), hi = lo;
-  for (const catar::Vec3& p : mesh.points)
-  {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double diagonal = (hi - lo).norm();
-  if (!(diagonal > 0.0) || !std::isfinite(diagonal))
-  {
-    return 0.0;
-  }
-  const std::size_t stride = std::max<std::size_t>(1, mesh.points.size() / 4096);
-  double scale = 0.0;
-  for (std::size_t i = 0; i < mesh.points.size(); i += stride)
-  {
-    scale = std::max(scale, catar::ImageScale(projector, mesh.points[i], 1e-4 * diagonal));
-  }
-  if (!(scale > 0.0))
-  {
-    return 0.0;
-  }
-  return std::min(2e-2 * diagonal, std::max(1e-4 * diagonal, tolerance / scale));
-}
-
 void AddValue(vtkFieldData* fd, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> a;
@@ -182,7 +146,7 @@ int vtkCatadioptricRemesher::RequestData(
     options.maxEdgeLength = this->MaximumEdgeLength;
     options.maxGeometricError = this->MaximumGeometricError > 0.0
       ? this->MaximumGeometricError
-      : GeometricErrorForTolerance(mesh, *projector, this->PixelTolerance);
+      : catar::GeometricErrorForTolerance(*projector, mesh.points, this->PixelTolerance);
     geometricBound = options.maxGeometricError;
     options.protectFeatures = this->ProtectFeatures;
     options.featureAngle = this->FeatureAngle;

@@ -68,4 +68,35 @@ double ImageScale(
   return std::isfinite(scale) ? scale : -1.0;
 }
 
+double GeometricErrorForTolerance(
+  const Projector& projector, const std::vector<Vec3>& points, double tolerance)
+{
+  if (points.empty())
+  {
+    return 0.0;
+  }
+  Vec3 lo = points.front(), hi = lo;
+  for (const Vec3& p : points)
+  {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diagonal = (hi - lo).norm();
+  if (!(diagonal > 0.0) || !std::isfinite(diagonal))
+  {
+    return 0.0;
+  }
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / 4096);
+  double scale = 0.0;
+  for (std::size_t i = 0; i < points.size(); i += stride)
+  {
+    scale = std::max(scale, ImageScale(projector, points[i], 1e-4 * diagonal));
+  }
+  if (!(scale > 0.0))
+  {
+    return 0.0;
+  }
+  return std::min(2e-2 * diagonal, std::max(1e-4 * diagonal, tolerance / scale));
+}
+
 } // namespace catar

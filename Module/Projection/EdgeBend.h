@@ -9,6 +9,8 @@
 
 #include "Projector.h"
 
+#include <vector>
+
 namespace catar
 {
 
@@ -24,6 +26,13 @@ double EdgeBendPixels(const Projector& projector, const Vec3& aWorld, const Vec3
 /// is not seen (no valid projection, or a moved point has none). Never NaN.
 double ImageScale(const Projector& projector, const Vec3& pointWorld, double step,
   SolverType solver = SolverType::Quartic);
+
+/// The bound on the geometric error that keeps coarsening a mesh within `tolerance` pixels in the
+/// image: the distance that moves the image by the tolerance where the object (its points) is
+/// magnified most (its largest ImageScale over up to 4096 of its points). Kept between 1e-4 and
+/// 2e-2 of the bounding-box diagonal; 0 when no point is seen or the points span nothing.
+double GeometricErrorForTolerance(
+  const Projector& projector, const std::vector<Vec3>& points, double tolerance);
 
 /// Distance from point p to the segment a-b (2D).
 double DistanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b);
