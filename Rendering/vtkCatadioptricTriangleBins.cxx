@@ -93,7 +93,7 @@ bool vtkCatadioptricTriangleBins::Build(
     const vtkIdType points = in.Data->GetNumberOfPoints();
     const vtkIdType cells = source.Polys->GetNumberOfCells();
     this->AddMesh(m, points, cells);
-    this->Readers.push_back(std::move(source));
+    this->Readers.push_back(source);
     nPoints += points;
     nCells += cells;
   }
