@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -42,6 +43,78 @@ const char* const kProgram = "catadioptric-render";
 // --quiet: errors and warnings only; --json: the summary as one JSON object on standard output.
 bool Quiet = false;
 bool Json = false;
+
+// The signal that asked a sequence to stop (SIGINT, SIGTERM), 0 while none has. A second one
+// ends the program at once (the handler restores the default action).
+volatile std::sig_atomic_t StopSignal = 0;
+
+extern "C" void OnStopSignal(int signal)
+{
+  StopSignal = signal;
+  std::signal(signal, SIG_DFL);
+}
+
+// The files the render reads (the scene's, `markers`), a background frame pattern expanded to
+// the frames that exist.
+catar::FileIdentities InputIdentities(const std::string& sceneFile, const std::string& markers)
+{
+  catar::FileIdentities inputs;
+  std::vector<std::string> files;
+  catar::SceneDescription description;
+  std::string ignored; // the renderer has loaded it already: it reads
+  if (!sceneFile.empty() && catar::LoadScene(sceneFile, description, ignored))
+  {
+    files = description.InputFiles();
+  }
+  files.push_back(sceneFile);
+  files.push_back(markers);
+  for (const std::string& f : files)
+  {
+    if (catar::IsFramePattern(f))
+    {
+      // Frames 0 (or 1) on while they exist, as the background reads them.
+      for (long long k = 0; k < 100000000; ++k)
+      {
+        const std::string name = catar::FrameFileName(f, k);
+        if (::access(name.c_str(), F_OK) != 0 && k > 0)
+        {
+          break;
+        }
+        inputs.Add(name);
+      }
+    }
+    else
+    {
+      inputs.Add(f);
+    }
+  }
+  return inputs;
+}
+
+// Whether an output (one file, or a pattern's frames [first, end)) is one of the inputs; names
+// it in `which`.
+bool IsAnInput(const catar::FileIdentities& inputs, const std::string& output, long long first,
+  long long end, std::string& which)
+{
+  if (output.empty())
+  {
+    return false;
+  }
+  if (!catar::IsFramePattern(output))
+  {
+    which = output;
+    return inputs.Contains(output);
+  }
+  for (long long k = first; k < end; ++k)
+  {
+    which = catar::FrameFileName(output, k);
+    if (inputs.Contains(which))
+    {
+      return true;
+    }
+  }
+  return false;
+}
 
 // A JSON string.
 std::string Quoted(const std::string& text)
@@ -345,12 +418,29 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
   double encode = 0.0, encodeWorst = 0.0, pose = 0.0, poseWorst = 0.0;
   const bool terminal = isatty(fileno(stderr)) != 0;
   const auto start = Clock::now();
+  // An error or a signal leaves no output that looks complete: the video is given up (kept under
+  // a name that says it is partial, or removed) and the program says which.
+  const auto giveUp = [&writer](const std::string& why, int status) {
+    std::string what;
+    writer.Abandon(what);
+    std::fprintf(stderr, "\ncatadioptric-render: %s%s%s\n", why.c_str(), what.empty() ? "" : "; ",
+      what.c_str());
+    return status;
+  };
+  std::signal(SIGINT, OnStopSignal);
+  std::signal(SIGTERM, OnStopSignal);
   for (long long k = first; k < end; ++k)
   {
+    if (StopSignal != 0)
+    {
+      const int signal = StopSignal;
+      return giveUp(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+          " before frame " + std::to_string(k),
+        128 + signal);
+    }
     if (!renderer->RenderFrame(static_cast<int>(k)))
     {
-      std::fprintf(stderr, "\ncatadioptric-render: frame %lld: %s\n", k, renderer->GetLastError());
-      return 1;
+      return giveUp("frame " + std::to_string(k) + ": " + renderer->GetLastError(), 1);
     }
     for (int s = perFrame; s < stages; ++s) // the background (decoding) and the frame's
     {
@@ -362,15 +452,20 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
     const auto e0 = Clock::now();
     if (!writer.Write(k, vtkCatadioptricImageSupport::ToFrame(renderer->GetOutput()), error))
     {
-      std::fprintf(stderr, "\ncatadioptric-render: %s\n", error.c_str());
-      return 1;
+      return giveUp(error, 1);
     }
     const double e = Seconds(e0, Clock::now());
     encode += e;
     encodeWorst = std::max(encodeWorst, e);
     Progress(k - first + 1, end - first, Seconds(start, Clock::now()), terminal);
   }
-  writer.Close();
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (!writer.Finish(error))
+  {
+    std::fprintf(stderr, "catadioptric-render: %s\n", error.c_str());
+    return 1;
+  }
   const double total = Seconds(start, Clock::now());
   const long long n = end - first;
   if (Json)
@@ -622,6 +717,24 @@ int Run(int argc, char* argv[])
       "catadioptric-render: --frames %lld:%lld is outside the sequence (frames 0 to %lld)\n", first,
       end, frames - 1);
     return 2;
+  }
+  // No output may be an input (compared as files, not names): writing it would destroy what is
+  // being read. Checked before anything is written.
+  {
+    const catar::FileIdentities inputs = InputIdentities(scene, markers);
+    std::string which;
+    for (const auto& output : { std::make_pair("-o", outName), std::make_pair("--mask", maskName),
+           std::make_pair("--ids", idsName), std::make_pair("--depth", depthName) })
+    {
+      if (IsAnInput(inputs, output.second, first, end, which))
+      {
+        std::fprintf(stderr,
+          "catadioptric-render: %s %s: '%s' is one of the scene's inputs; refusing to write "
+          "over it (choose another output name)\n",
+          output.first, output.second.c_str(), which.c_str());
+        return 2;
+      }
+    }
   }
   std::string patternError;
   const bool sequence =

@@ -1,11 +1,62 @@
 #include "FileOutput.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 
 namespace catar
 {
+std::string TemporaryNameBeside(const std::string& path)
+{
+  static std::atomic<unsigned long> counter{ 0 };
+  const std::size_t slash = path.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+  const std::size_t dot = base.find_last_of('.');
+  const std::string ext = dot == std::string::npos || dot == 0 ? "" : base.substr(dot);
+  return dir + "." + base + ".partial-" + std::to_string(static_cast<long>(::getpid())) + "-" +
+    std::to_string(counter++) + ext;
+}
+
+bool CommitTemporary(const std::string& from, const std::string& to, std::string& error)
+{
+  if (std::rename(from.c_str(), to.c_str()) != 0)
+  {
+    error = to + ": cannot move the written file into place (" + std::strerror(errno) + ")";
+    std::remove(from.c_str());
+    return false;
+  }
+  return true;
+}
+
+bool IsSpecialFile(const std::string& path)
+{
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+}
+
+void FileIdentities::Add(const std::string& path)
+{
+  struct stat st;
+  if (!path.empty() && ::stat(path.c_str(), &st) == 0)
+  {
+    this->Ids.emplace(
+      static_cast<unsigned long long>(st.st_dev), static_cast<unsigned long long>(st.st_ino));
+  }
+}
+
+bool FileIdentities::Contains(const std::string& path) const
+{
+  struct stat st;
+  return !path.empty() && ::stat(path.c_str(), &st) == 0 &&
+    this->Ids.count({ static_cast<unsigned long long>(st.st_dev),
+      static_cast<unsigned long long>(st.st_ino) }) > 0;
+}
+
 bool WriteWholeFile(const std::string& path, const std::string& bytes, std::string& error)
 {
   if (path.empty())
@@ -13,7 +64,15 @@ bool WriteWholeFile(const std::string& path, const std::string& bytes, std::stri
     error = "no file name given";
     return false;
   }
-  std::FILE* file = std::fopen(path.c_str(), "wb");
+  // A device or a FIFO is written in place; a file through a temporary name beside it.
+  const bool inPlace = IsSpecialFile(path);
+  if (!inPlace && ::access(path.c_str(), F_OK) == 0 && ::access(path.c_str(), W_OK) != 0)
+  {
+    error = path + ": cannot open for writing (" + std::strerror(errno) + ")";
+    return false;
+  }
+  const std::string target = inPlace ? path : TemporaryNameBeside(path);
+  std::FILE* file = std::fopen(target.c_str(), "wb");
   if (!file)
   {
     error = path + ": cannot open for writing (" + std::strerror(errno) + ")";
@@ -28,9 +87,13 @@ bool WriteWholeFile(const std::string& path, const std::string& bytes, std::stri
   {
     const int e = flushErrno != 0 ? flushErrno : errno;
     error = path + ": writing failed" + (e != 0 ? std::string(" (") + std::strerror(e) + ")" : "");
+    if (!inPlace)
+    {
+      std::remove(target.c_str());
+    }
     return false;
   }
-  return true;
+  return inPlace || CommitTemporary(target, path, error);
 }
 
 bool WriteNpyInt64(const std::string& path, long long rows, long long cols, const long long* values,

@@ -8,9 +8,13 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <initializer_list>
 
@@ -331,10 +335,40 @@ bool FrameReader::Read(long long k, Frame& frame, std::string& error)
 struct FrameWriter::Internals
 {
   std::string name;
+  std::string temporary; // the video being written (empty: none, or moved into place)
   bool video = false;
   int width = 0, height = 0;
+  long long written = 0;
   cv::VideoWriter writer;
 };
+
+namespace
+{
+// Frames of the video file `name` that can be read: the container's count when it says so, else
+// (or when it differs from `expected`) counted by reading through.
+long long ReadableFrames(const std::string& name, long long expected)
+{
+  cv::VideoCapture capture;
+  try
+  {
+    if (!capture.open(name, cv::CAP_FFMPEG))
+    {
+      return 0;
+    }
+    const long long said = static_cast<long long>(capture.get(cv::CAP_PROP_FRAME_COUNT));
+    long long n = 0;
+    while (n <= expected && capture.grab())
+    {
+      ++n;
+    }
+    return said == n || said <= 0 ? n : std::min(said, n);
+  }
+  catch (const cv::Exception&)
+  {
+    return 0;
+  }
+}
+} // namespace
 
 FrameWriter::FrameWriter()
   : Internal(new Internals)
@@ -343,7 +377,81 @@ FrameWriter::FrameWriter()
 
 FrameWriter::~FrameWriter()
 {
-  this->Close();
+  Internals& in = *this->Internal;
+  if (!in.temporary.empty())
+  {
+    in.writer.release();
+    std::remove(in.temporary.c_str());
+  }
+}
+
+std::string FrameWriter::PartialName(const std::string& name)
+{
+  const std::string ext = Extension(name);
+  return name.substr(0, name.size() - ext.size()) + ".partial" + ext;
+}
+
+long long FrameWriter::GetNumberOfFramesWritten() const
+{
+  return this->Internal->written;
+}
+
+bool FrameWriter::Finish(std::string& error)
+{
+  Internals& in = *this->Internal;
+  if (in.temporary.empty())
+  {
+    return true;
+  }
+  in.writer.release();
+  const std::string temporary = in.temporary;
+  in.temporary.clear();
+  const long long readable = ReadableFrames(temporary, in.written);
+  if (readable != in.written)
+  {
+    std::remove(temporary.c_str());
+    error = "the video '" + in.name + "' could not be written whole: " + std::to_string(readable) +
+      " of its " + std::to_string(in.written) +
+      " frames could be read back (a full disk?); nothing was written there";
+    return false;
+  }
+  return CommitTemporary(temporary, in.name, error);
+}
+
+void FrameWriter::Close()
+{
+  std::string ignored;
+  this->Finish(ignored);
+}
+
+void FrameWriter::Abandon(std::string& what)
+{
+  Internals& in = *this->Internal;
+  if (!in.video)
+  {
+    what = in.written > 0 ? std::to_string(in.written) + " frames were written as '" + in.name + "'"
+                          : "no frame was written";
+    return;
+  }
+  if (in.temporary.empty())
+  {
+    what = "";
+    return;
+  }
+  in.writer.release();
+  const std::string temporary = in.temporary;
+  in.temporary.clear();
+  const long long readable = ReadableFrames(temporary, in.written);
+  const std::string partial = PartialName(in.name);
+  std::string error;
+  if (readable > 0 && CommitTemporary(temporary, partial, error))
+  {
+    what = "the " + std::to_string(readable) + " frames written were kept as '" + partial + "'; '" +
+      in.name + "' was not written";
+    return;
+  }
+  std::remove(temporary.c_str());
+  what = "the unfinished video was removed; '" + in.name + "' was not written";
 }
 
 bool FrameWriter::IsVideo(const std::string& name)
@@ -356,7 +464,11 @@ bool FrameWriter::Open(
   const std::string& name, int width, int height, double framesPerSecond, std::string& error)
 {
   Internals& in = *this->Internal;
-  this->Close();
+  if (!in.temporary.empty())
+  {
+    in.writer.release();
+    std::remove(in.temporary.c_str());
+  }
   in = Internals();
   in.name = name;
   in.width = width;
@@ -380,6 +492,11 @@ bool FrameWriter::Open(
     return false;
   }
   in.video = IsVideo(name);
+  if (in.video && FileExists(name) && ::access(name.c_str(), W_OK) != 0)
+  {
+    error = "cannot write '" + name + "' (" + std::strerror(errno) + ")";
+    return false;
+  }
   if (pattern && in.video)
   {
     error = "'" + name + "' is both a frame pattern and a video name";
@@ -407,18 +524,24 @@ bool FrameWriter::Open(
   const std::string ext = Extension(name);
   const int fourcc = ext == ".avi" ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')
                                    : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
+  // Written beside the target, moved into place by Finish().
+  in.temporary = TemporaryNameBeside(name);
   try
   {
-    in.writer.open(name, cv::CAP_FFMPEG, fourcc, framesPerSecond, cv::Size(width, height));
+    in.writer.open(in.temporary, cv::CAP_FFMPEG, fourcc, framesPerSecond, cv::Size(width, height));
   }
   catch (const cv::Exception& e)
   {
     error = "cannot write '" + name + "': " + e.msg;
+    std::remove(in.temporary.c_str());
+    in.temporary.clear();
     return false;
   }
   if (!in.writer.isOpened())
   {
     error = "cannot write '" + name + "' (no encoder for it, or the file cannot be created)";
+    std::remove(in.temporary.c_str());
+    in.temporary.clear();
     return false;
   }
   return true;
@@ -442,9 +565,15 @@ bool FrameWriter::Write(long long index, const Frame& frame, std::string& error)
       cv::Mat bgr;
       cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
       in.writer.write(bgr);
+      ++in.written;
       return true;
     }
-    return WriteImageFile(FrameFileName(in.name, index), frame, error);
+    if (!WriteImageFile(FrameFileName(in.name, index), frame, error))
+    {
+      return false;
+    }
+    ++in.written;
+    return true;
   }
   catch (const cv::Exception& e)
   {
@@ -605,13 +734,5 @@ bool WriteImage16File(const std::string& file, int width, int height, int channe
   }
   return WriteDataImage(
     file, channels == 3 ? bgr : image, { ".png", ".tif", ".tiff" }, "16-bit images", error);
-}
-
-void FrameWriter::Close()
-{
-  if (this->Internal && this->Internal->writer.isOpened())
-  {
-    this->Internal->writer.release();
-  }
 }
 } // namespace catar

@@ -72,7 +72,14 @@ bool WriteImage16File(const std::string& file, int width, int height, int channe
   const std::uint16_t* values, std::string& error);
 
 /// Frames written as numbered image files (a pattern; the format from the extension, as
-/// cv::imwrite) or a video (.mp4, .avi).
+/// cv::imwrite; each file whole or absent) or a video (.mp4, .avi).
+///
+/// A video is whole or absent: it is written to a temporary name beside the target and moved
+/// into place by Finish() only once it is closed and read back with every frame written (a full
+/// disk, whose losses the encoder does not report, is found there). A video that is not finished
+/// -- an error, an interruption -- is given up with Abandon(), which keeps what was written under
+/// a name that says so (clip.partial.mp4) or removes it, and says which; the destructor of a
+/// writer neither finished nor abandoned removes it.
 
 class FrameWriter
 {
@@ -88,8 +95,20 @@ public:
   /// Writes a frame as number `index` (patterns) or as the video's next frame. Frames of another
   /// size than Open's are refused.
   bool Write(long long index, const Frame& frame, std::string& error);
-  /// Finishes the video (also done by the destructor).
+  /// Finishes the output: a video is closed, read back and, with every frame written readable,
+  /// moved into place (replacing an older file of that name). False with a sentence in error
+  /// (the video is removed then: nothing at the name, or the older file left as it was).
+  bool Finish(std::string& error);
+  /// Finish(), the error dropped (for callers that read the output back themselves).
   void Close();
+  /// Gives up an unfinished output. A video with readable frames is kept under PartialName(name),
+  /// one without is removed; patterns keep the frames written. `what` receives a sentence that
+  /// says which (for the user). Safe to call after Finish (nothing to do then).
+  void Abandon(std::string& what);
+  /// Frames written so far.
+  long long GetNumberOfFramesWritten() const;
+  /// The name an abandoned video is kept under: clip.mp4 -> clip.partial.mp4.
+  static std::string PartialName(const std::string& name);
 
 private:
   struct Internals;

@@ -524,6 +524,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   if (cam.isString())
   {
     const std::string path = Resolve(baseDir, cam.text());
+    scene.calibrationFile = path;
     std::string error;
     if (!LoadCalibration(path, scene.camera, error))
     {
@@ -847,6 +848,30 @@ void SceneLight::At(double t, Vec3& p, Vec3& focal) const
   const double s = (t - k[i - 1].time) / (k[i].time - k[i - 1].time);
   p = (1.0 - s) * k[i - 1].position + s * k[i].position;
   focal = (1.0 - s) * k[i - 1].focalPoint + s * k[i].focalPoint;
+}
+
+std::vector<std::string> SceneDescription::InputFiles() const
+{
+  std::vector<std::string> files;
+  const auto add = [&files](const std::string& f) {
+    if (!f.empty())
+    {
+      files.push_back(f);
+    }
+  };
+  add(this->fileName);
+  add(this->calibrationFile);
+  for (const SceneObject& o : this->objects)
+  {
+    add(o.file);
+    add(o.texture);
+  }
+  add(this->background.image);
+  add(this->background.panorama);
+  add(this->background.video);
+  add(this->trajectoryFile);
+  add(this->markerBoardFile);
+  return files;
 }
 
 bool SceneDescription::IsSequence() const

@@ -156,7 +156,8 @@ struct SceneDescription
 {
   std::string fileName; ///< where it was read from ("" for built-in)
   CameraModel camera;
-  int width = 0; ///< output size; 0 = the calibration's
+  std::string calibrationFile; ///< the calibration file `camera` names ("" when inline)
+  int width = 0;               ///< output size; 0 = the calibration's
   int height = 0;
   SolverType solver = SolverType::Quartic;
   /// Key `visibility`: "painter" (the paper's painter order, default) or "depth" (a per-pixel
@@ -195,6 +196,11 @@ struct SceneDescription
   /// background's frame (an `image` or `video` background), instead of the calibration's pose
   /// or a trajectory.
   std::string markerBoardFile;
+
+  /// Every file the scene reads, as resolved: the scene file, the calibration, meshes, textures,
+  /// the background's image, panorama or video (a frame pattern as it is), the trajectory and
+  /// the marker board. An output must be none of them.
+  std::vector<std::string> InputFiles() const;
 
   /// Whether anything moves or changes from frame to frame (a trajectory, keyframes, a video).
   bool IsSequence() const;

@@ -1,7 +1,8 @@
 // What a build without the optional dependencies does where it would need them
 // (Module/Trace/RaySceneWithoutEmbree.cxx, Module/Vision/PoseEstimationWithoutSolvers.cxx,
-// Module/MeshPrep/MeshPrepWithoutLibraries.cxx, built here on their own): it refuses, with a sentence that names what is missing and how to get it,
-// and never answers as if it had traced or posed.
+// Module/MeshPrep/MeshPrepWithoutLibraries.cxx, built here on their own): it refuses, with a
+// sentence that names what is missing and how to get it, and never answers as if it had traced or
+// posed.
 #include "CameraModel.h"
 #include "MeshMetrics.h"
 #include "MeshRepair.h"
