@@ -152,6 +152,7 @@ int vtkCatadioptricRemesher::RequestData(
     options.featureAngle = this->FeatureAngle;
     options.maxIterations = this->Iterations;
     options.threads = vtkCatadioptricParallel::GetNumberOfThreads();
+    options.maxTriangles = static_cast<std::size_t>(this->MaximumTriangles);
     options.progress = &ReportProgress;
     options.stop = &StopRequested;
     options.progressData = this;
@@ -222,6 +223,7 @@ void vtkCatadioptricRemesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumEdgeLength: " << this->MaximumEdgeLength << "\n";
   os << indent << "MaximumGeometricError: " << this->MaximumGeometricError << "\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "MaximumTriangles: " << this->MaximumTriangles << "\n";
   os << indent << "ProtectFeatures: " << (this->ProtectFeatures ? "On" : "Off") << "\n";
   os << indent << "FeatureAngle: " << this->FeatureAngle << "\n";
   os << indent << "PreserveBoundaries: " << (this->PreserveBoundaries ? "On" : "Off") << "\n";

@@ -102,6 +102,15 @@ public:
   ///@}
 
   ///@{
+  /// PIXEL_TOLERANCE: the triangle budget (default 4,000,000). The triangles the tolerance needs
+  /// are estimated before any work; past twice the budget the filter fails at once, with the
+  /// estimate, instead of refining for minutes. Refinement also stops at the budget (with a
+  /// warning).
+  vtkSetClampMacro(MaximumTriangles, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumTriangles, vtkIdType);
+  ///@}
+
+  ///@{
   /// Keep sharp edges and corners: edges whose dihedral angle deviates from flat by more than
   /// FeatureAngle degrees. Default on, 60 degrees.
   vtkSetMacro(ProtectFeatures, bool);
@@ -157,6 +166,7 @@ protected:
   double MaximumEdgeLength = 0.0;
   double MaximumGeometricError = 0.0;
   int Iterations = 3;
+  vtkIdType MaximumTriangles = 4000000;
   bool ProtectFeatures = true;
   double FeatureAngle = 60.0;
   bool PreserveBoundaries = true;

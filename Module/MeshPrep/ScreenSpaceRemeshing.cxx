@@ -47,6 +47,7 @@ inline void OpenMesh::PropertyT<OpenMesh::Vec3d>::push_back()
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
 #include <limits>
 #include <sstream>
@@ -238,6 +239,11 @@ public:
 
   std::size_t NumberOfTriangles() const { return this->Mesh.n_faces(); }
 
+  /// About how many triangles refinement would make: an edge that bends b pixels is cut into
+  /// about sqrt(b / tolerance) pieces (a bend falls with the square of the length), no shorter
+  /// than minEdgeLength, and a triangle into the square of its most cut edge's pieces.
+  double EstimateTriangles();
+
   void Export(TriangleMesh& out) const;
 
   // Decimation module callbacks: the collapse's priority (ILLEGAL_COLLAPSE when not allowed),
@@ -394,6 +400,35 @@ double Remesher::ReplacementDeviation(
   }
   return bound +
     std::max(OneSidedDistance(original, replacement), OneSidedDistance(replacement, original));
+}
+
+double Remesher::EstimateTriangles()
+{
+  std::vector<std::pair<VH, VH>> pairs;
+  pairs.reserve(this->Mesh.n_edges());
+  for (EH e : this->Mesh.edges())
+  {
+    const HH h = this->Mesh.halfedge_handle(e, 0);
+    pairs.emplace_back(this->Mesh.from_vertex_handle(h), this->Mesh.to_vertex_handle(h));
+  }
+  this->Prefetch(pairs);
+  double total = 0.0;
+  for (FH f : this->Mesh.faces())
+  {
+    double pieces = 1.0;
+    for (HH h : this->Mesh.fh_range(f))
+    {
+      const VH a = this->Mesh.from_vertex_handle(h), b = this->Mesh.to_vertex_handle(h);
+      const double bend = this->Bend(a, b);
+      const double length = (this->Mesh.point(a) - this->Mesh.point(b)).norm();
+      const double byBend =
+        bend > this->Set.tolerance ? std::sqrt(bend / this->Set.tolerance) : 1.0;
+      const double byLength = std::max(1.0, length / this->Set.minEdgeLength);
+      pieces = std::max(pieces, std::min(byBend, byLength));
+    }
+    total += pieces * pieces;
+  }
+  return total;
 }
 
 void Remesher::Prepare()
@@ -1044,6 +1079,23 @@ ScreenSpaceResult Remesh(
   if (!Report(options, 0.05))
   {
     result.error = kAbortedError;
+    return result;
+  }
+  // A tolerance far below what the mesh needs would refine for minutes towards the budget: refused
+  // at once, with the estimate, when that is more than twice the budget (the estimate runs about
+  // 1.5 times what one round of refinement makes: TestScreenSpaceRemeshing).
+  const double estimate = remesher.EstimateTriangles();
+  result.estimatedTriangles = estimate;
+  if (estimate > 2.0 * static_cast<double>(settings.maxTriangles))
+  {
+    char text[320];
+    std::snprintf(text, sizeof text,
+      "a pixel tolerance of %g would need about %.3g triangles, more than twice the budget of "
+      "%zu (maxTriangles): raise the tolerance, or the budget (a scene's remesh: { max_triangles: "
+      "N }, "
+      "vtkCatadioptricRemesher's MaximumTriangles)",
+      settings.tolerance, estimate, settings.maxTriangles);
+    result.error = text;
     return result;
   }
 

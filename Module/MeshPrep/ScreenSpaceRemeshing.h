@@ -40,8 +40,10 @@ struct ScreenSpaceOptions
   /// Between rounds, flip edges and slide vertices along the surface where that lowers the bend,
   /// so that the next round can collapse more edges.
   bool relax = true;
-  /// Refinement stops at this many triangles (a warning says so; maxError tells what was
-  /// reached), a guard against unreachable tolerances.
+  /// The triangle budget. Before any work, the triangles the tolerance needs are estimated
+  /// (estimatedTriangles); past twice the budget the remeshing is refused with the estimate.
+  /// Refinement also stops at this many triangles (a warning says so; maxError tells what was
+  /// reached).
   std::size_t maxTriangles = 4000000;
   /// Threads of the edge-bend loops (Core's pool, Module/Base/Parallel.h); < 1: its default, the
   /// hardware's. vtkCatadioptricRemesher passes VTK's (vtkCatadioptricParallel).
@@ -61,6 +63,9 @@ struct ScreenSpaceResult
   double meanError = 0.0; ///< mean bend over visible edges
   std::size_t visibleEdges = 0;
   int iterations = 0;
+  /// The triangles refinement was estimated to need (each edge cut into sqrt(bend / tolerance)
+  /// pieces), before any work.
+  double estimatedTriangles = 0.0;
 };
 
 /// Remeshes `input` so that every visible edge bends at most `options.tolerance` pixels (as far as

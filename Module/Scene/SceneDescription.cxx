@@ -125,7 +125,8 @@ SceneRemesh ReadRemesh(const fs::Node& node, const SceneRemesh& fallback)
   }
   try
   {
-    fs::CheckKeys(node, { "target_area", "pixel_tolerance", "iterations", "feature_angle" });
+    fs::CheckKeys(
+      node, { "target_area", "pixel_tolerance", "iterations", "feature_angle", "max_triangles" });
   }
   catch (const fs::ParseError& e)
   {
@@ -165,6 +166,12 @@ SceneRemesh ReadRemesh(const fs::Node& node, const SceneRemesh& fallback)
   if (!(r.featureAngle >= 0.0 && r.featureAngle <= 180.0))
   {
     throw fs::ParseError("remesh: 'feature_angle' must be in [0, 180] degrees");
+  }
+  r.maxTriangles = fs::Number(node, "max_triangles", r.maxTriangles);
+  if (!(r.maxTriangles >= 1 && r.maxTriangles <= 1e9) ||
+    r.maxTriangles != std::floor(r.maxTriangles))
+  {
+    throw fs::ParseError("remesh: 'max_triangles' must be an integer in [1, 1e9]");
   }
   return r;
 }

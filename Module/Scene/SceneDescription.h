@@ -23,7 +23,8 @@ struct SceneRemesh
   double targetArea = 1.2e-5;  ///< m^2 (after the object's scale), mode "area"
   double pixelTolerance = 0.5; ///< largest edge bend in pixels, mode "pixels"
   int iterations = 3;
-  double featureAngle = 60.0; ///< degrees: sharper edges are kept
+  double featureAngle = 60.0;    ///< degrees: sharper edges are kept
+  double maxTriangles = 4000000; ///< mode "pixels": the triangle budget (key max_triangles)
 };
 
 /// The most triangles a procedural object may have (its `resolution` is checked against it

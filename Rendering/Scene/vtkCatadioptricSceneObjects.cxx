@@ -515,6 +515,7 @@ vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::Remesh(vtkPolyData* me
   vtkNew<vtkCatadioptricRemesher> remesher;
   remesher->SetInputData(mesh);
   remesher->SetIterations(remesh.iterations);
+  remesher->SetMaximumTriangles(static_cast<vtkIdType>(remesh.maxTriangles));
   remesher->SetFeatureAngle(remesh.featureAngle);
   if (remesh.mode == "area")
   {
