@@ -219,16 +219,14 @@ bool WriteMaskAndIds(vtkImageData* image, const std::string& maskName, const std
   std::string error;
   if (!maskName.empty())
   {
-    catar::Frame mask;
-    mask.width = static_cast<int>(w);
-    mask.height = static_cast<int>(h);
-    mask.rgba.resize(static_cast<std::size_t>(4 * w * h), 255);
+    // One 8-bit channel: 255 where a triangle is seen, 0 elsewhere.
+    std::vector<std::uint8_t> mask(top.size());
     for (std::size_t i = 0; i < top.size(); ++i)
     {
-      const std::uint8_t v = top[i] >= 0 ? 255 : 0;
-      std::fill(mask.rgba.begin() + 4 * i, mask.rgba.begin() + 4 * i + 3, v);
+      mask[i] = top[i] >= 0 ? 255 : 0;
     }
-    if (!catar::WriteImageFile(maskName, mask, error))
+    if (!catar::WriteMaskFile(
+          maskName, static_cast<int>(w), static_cast<int>(h), mask.data(), error))
     {
       std::fprintf(stderr, "%s: --mask %s\n", kProgram, error.c_str());
       return false;
@@ -285,9 +283,13 @@ bool ParseRange(const std::string& text, long long& first, long long& end)
     {
       return true;
     }
-    char* e = nullptr;
-    v = std::strtoll(s.c_str(), &e, 10);
-    return e && *e == '\0' && v >= 0;
+    // Digits only, at most 10^12 (no sequence is longer; a larger number would overflow).
+    if (s.size() > 13 || s.find_first_not_of("0123456789") != std::string::npos)
+    {
+      return false;
+    }
+    v = std::stoll(s);
+    return v <= 1000000000000LL;
   };
   if (colon == std::string::npos)
   {
@@ -635,6 +637,20 @@ int Run(int argc, char* argv[])
       "for usage)\n",
       kProgram);
     return 2;
+  }
+  // `-o --quiet` takes "--quiet" as the file name: an output name that starts with '-' is almost
+  // always a forgotten value (a file named so can be given as ./-name).
+  for (const auto& output : { std::make_pair("-o", outName), std::make_pair("--mask", maskName),
+         std::make_pair("--ids", idsName), std::make_pair("--depth", depthName) })
+  {
+    if (output.second.size() > 1 && output.second[0] == '-')
+    {
+      std::fprintf(stderr,
+        "%s: %s needs a file name, not '%s' (a file whose name starts with '-' is given as "
+        "./%s; run with --help for usage)\n",
+        kProgram, output.first, output.second.c_str(), output.second.c_str());
+      return 2;
+    }
   }
   const int antialiasing = antialiasSamples > 0 ? antialiasSamples : antialias ? 4 : 0;
   // One image: its format by the extension, checked before any work (and the mask's, the ids').

@@ -718,6 +718,37 @@ bool WriteFloatImageFile(
     file, image, { ".exr", ".tif", ".tiff" }, "float images (32-bit, one channel)", error);
 }
 
+bool WriteMaskFile(
+  const std::string& file, int width, int height, const std::uint8_t* values, std::string& error)
+{
+  if (!IsImageFileName(file, &error))
+  {
+    return false;
+  }
+  if (width <= 0 || height <= 0 || !values)
+  {
+    error = "'" + file + "': no image to write";
+    return false;
+  }
+  const cv::Mat image(height, width, CV_8UC1, const_cast<std::uint8_t*>(values));
+  const std::string ext = Extension(file).empty() ? ".png" : Extension(file);
+  std::vector<uchar> bytes;
+  try
+  {
+    if (!cv::imencode(ext, image, bytes) || bytes.empty())
+    {
+      error = "'" + file + "': this build cannot write a mask as " + ext;
+      return false;
+    }
+  }
+  catch (const cv::Exception& e)
+  {
+    error = "'" + file + "': " + e.msg;
+    return false;
+  }
+  return WriteWholeFile(file, std::string(bytes.begin(), bytes.end()), error);
+}
+
 bool WriteImage16File(const std::string& file, int width, int height, int channels,
   const std::uint16_t* values, std::string& error)
 {

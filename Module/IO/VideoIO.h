@@ -66,6 +66,10 @@ bool WriteImageFile(const std::string& file, const Frame& frame, std::string& er
 /// is kept. False with a sentence in error (another extension, or no writer for it).
 bool WriteFloatImageFile(
   const std::string& file, int width, int height, const float* values, std::string& error);
+/// An 8-bit image of one channel (a mask: 0 or 255), `values` width x height, rows top first, in
+/// any format IsImageFileName accepts (grey). False with a sentence in error.
+bool WriteMaskFile(
+  const std::string& file, int width, int height, const std::uint8_t* values, std::string& error);
 /// An image of 16-bit unsigned words, `channels` (1 or 3, in R, G, B order) per pixel: .png or
 /// .tif/.tiff. False with a sentence in error.
 bool WriteImage16File(const std::string& file, int width, int height, int channels,

@@ -60,7 +60,10 @@ TEST(RenderProgram, OptionsTakeTheirValueEitherWay)
 TEST(RenderProgram, UsageErrorsOnceWithStatusTwo)
 {
   for (const char* bad : { "--bogus", "--antialias-samples 5", "--repeat 0", "--fps=-1",
-         "--target-area 1e-4 --pixel-tolerance 1", "--frames 3:1", "--adaptive", "a.yaml b.yaml" })
+         "--target-area 1e-4 --pixel-tolerance 1", "--frames 3:1", "--adaptive", "a.yaml b.yaml",
+         // An option where a file name belongs, and a frame number past 64 bits.
+         "-o --quiet", "--mask --json", "--frames 99999999999999999999",
+         "--frames 0:99999999999999999999" })
   {
     const auto run = Render(bad);
     EXPECT_EQ(run.status, 2) << bad << ": " << run.output;
@@ -119,6 +122,8 @@ TEST(RenderProgram, AlphaMaskAndIds)
     "assert 1000 < seen.sum() < seen.size // 2, seen.sum()\n"
     "assert (t[~seen] == -1).all()\n"
     "assert ((m == 255) == seen).all() and ((m == 0) == ~seen).all()\n"
+    "assert I.open(\"" +
+    mask + "\").mode == \"L\", I.open(\"" + mask + "\").mode\n"
     "assert ((a[..., 3] == 255) == seen).all() and (a[..., 3][~seen] == 0).all()\n"
     "print(\"seen\", seen.sum(), \"meshes\", sorted(set((t[seen] >> 32).tolist())))'";
   const auto read = catar_test::RunProgram(CATAR_SYSTEM_PYTHON, check);
