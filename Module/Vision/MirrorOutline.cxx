@@ -321,6 +321,13 @@ bool SphereFromOutline(const CameraModel& camera, double radius,
     sum += dist * dist;
   }
   report.rmsPixels = std::sqrt(sum / static_cast<double>(n));
+  if (!std::isfinite(report.rmsPixels) || !std::isfinite(report.rmsAngle))
+  {
+    // A radius far out of scale (1e200) leaves the cone's numbers without precision.
+    error = "the fit of a sphere of radius " + std::to_string(radius) +
+      " to the outline has no finite residual (is the radius in the calibration's length unit?)";
+    return false;
+  }
   return true;
 }
 

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 
 #include <opencv2/core.hpp>
@@ -530,4 +532,12 @@ TEST(MirrorOutline, ProgramFindsTheCentre)
   run = RunOutlineProgram("'" + calibration + "' '" + image + "'");
   EXPECT_EQ(run.status, 2) << run.output;
   EXPECT_EQ(run.output.rfind("catadioptric-mirror-outline: ", 0), 0u) << run.output;
+  // A radius far out of scale: an error that names the radius, never "rms: -nan" and status 0.
+  std::remove(written.c_str());
+  run =
+    RunOutlineProgram("'" + calibration + "' '" + image + "' --radius 1e200 -o '" + written + "'");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_EQ(run.output.find("nan"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("radius"), std::string::npos) << run.output;
+  EXPECT_NE(::access(written.c_str(), F_OK), 0) << "a calibration was written";
 }
