@@ -675,14 +675,16 @@ void RayTracer::RenderTile(const ImageView& target, RasterId* ids, std::ptrdiff_
     {
       const int firstSample = ((y - y0) * tileWidth + (x - x0)) * perPixel;
       std::uint8_t* px = target.pixel(x, y);
-      const double frame[3] = { px[0] / 255.0, px[1] / 255.0, px[2] / 255.0 };
-      double sum[3] = { 0.0, 0.0, 0.0 };
+      // The frame's alpha too: over a transparent background (alpha 0) a sample's alpha is its
+      // surface's, as the compositor composites it (a + frame alpha (1 - a)).
+      const double frame[4] = { px[0] / 255.0, px[1] / 255.0, px[2] / 255.0, px[3] / 255.0 };
+      double sum[4] = { 0.0, 0.0, 0.0, 0.0 };
       RasterId id = -1;
       float pathLength = std::numeric_limits<float>::quiet_NaN();
       bool any = false;
       for (int k = 0; k < perPixel; ++k)
       {
-        double sample[3] = { frame[0], frame[1], frame[2] };
+        double sample[4] = { frame[0], frame[1], frame[2], frame[3] };
         const int i = which[firstSample + k];
         if (i >= 0 && hits[i].hit)
         {
@@ -698,6 +700,7 @@ void RayTracer::RenderTile(const ImageView& target, RasterId* ids, std::ptrdiff_
           {
             sample[c] = rgba[3] * rgba[c] + (1.0 - rgba[3]) * frame[c];
           }
+          sample[3] = rgba[3] + (1.0 - rgba[3]) * frame[3];
           if (k == centre)
           {
             const TraceMesh& mesh = *this->Meshes[hit.mesh];
@@ -708,14 +711,14 @@ void RayTracer::RenderTile(const ImageView& target, RasterId* ids, std::ptrdiff_
             pathLength = static_cast<float>(hit.t * direction.norm());
           }
         }
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < 4; ++c)
         {
           sum[c] += sample[c];
         }
       }
       if (any)
       {
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < 4; ++c)
         {
           px[c] = static_cast<std::uint8_t>(std::lround(255.0 * std::min(1.0, sum[c] * inv)));
         }

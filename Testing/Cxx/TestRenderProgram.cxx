@@ -123,7 +123,8 @@ TEST(RenderProgram, AlphaMaskAndIds)
     "assert (t[~seen] == -1).all()\n"
     "assert ((m == 255) == seen).all() and ((m == 0) == ~seen).all()\n"
     "assert I.open(\"" +
-    mask + "\").mode == \"L\", I.open(\"" + mask + "\").mode\n"
+    mask + "\").mode == \"L\", I.open(\"" + mask +
+    "\").mode\n"
     "assert ((a[..., 3] == 255) == seen).all() and (a[..., 3][~seen] == 0).all()\n"
     "print(\"seen\", seen.sum(), \"meshes\", sorted(set((t[seen] >> 32).tolist())))'";
   const auto read = catar_test::RunProgram(CATAR_SYSTEM_PYTHON, check);
@@ -257,6 +258,25 @@ TEST(RenderProgram, ReferenceRenderer)
   EXPECT_EQ(compare.status, 0) << compare.output;
   std::cout << "[ cli      ] fast against --reference: " << compare.output;
   EXPECT_EQ(Render("--samples 2").status, 2);
+
+  // --alpha with --reference: the objects opaque (alpha 255) exactly where a ray meets them (one
+  // ray a pixel), the rest transparent; the same alpha as the fast path's nearly everywhere.
+  const std::string fastAlpha = dir + "/catar_fast_alpha.png",
+                    exactAlpha = dir + "/catar_exact_alpha.png";
+  ASSERT_EQ(Render("--quiet --alpha -o '" + fastAlpha + "'").status, 0);
+  const auto c = Render(
+    "--quiet --reference --alpha -o '" + exactAlpha + "' --ids '" + dir + "/catar_alpha_ids.npy'");
+  ASSERT_EQ(c.status, 0) << c.output;
+  const auto alpha = catar_test::RunProgram(CATAR_SYSTEM_PYTHON,
+    "-c 'import numpy, PIL.Image as I\n"
+    "e = numpy.asarray(I.open(\"" +
+      exactAlpha + "\"))[..., 3]\nf = numpy.asarray(I.open(\"" + fastAlpha +
+      "\"))[..., 3]\nseen = numpy.load(\"" + dir +
+      "/catar_alpha_ids.npy\") >= 0\n"
+      "assert 1000 < seen.sum() < seen.size // 2, seen.sum()\n"
+      "assert (e[seen] == 255).all() and (e[~seen] == 0).all(), (e[seen].min(), e[~seen].max())\n"
+      "agree = (e == f).mean()\nprint(\"alpha agrees on\", agree)\nassert agree > 0.995, agree'");
+  EXPECT_EQ(alpha.status, 0) << alpha.output;
 }
 
 // Long work shows its progress (here from the start: CATAR_PROGRESS_AFTER=0), a line at every
