@@ -187,6 +187,18 @@ void ReadCalibration(const Node& node, CameraModel& m)
                        "rational and thin-prism models are not supported");
     }
     d.resize(5, 0.0);
+    // OpenCV's calibrations of real lenses give coefficients of a few units (wide-angle lenses a
+    // few hundred at most); 1e10 is a typing error that would send every ray off the image.
+    for (const double k : d)
+    {
+      if (!(std::abs(k) <= 1e4))
+      {
+        std::ostringstream s;
+        s << "'distortion_coefficients' " << k
+          << " is not a lens's (each must be within +-1e4; OpenCV's plumb_bob model)";
+        throw ParseError(s.str());
+      }
+    }
     model.distortion = Distortion{ d[0], d[1], d[2], d[3], d[4] };
   }
   model.mirror = ReadMirror(node["mirror"]);

@@ -290,6 +290,17 @@ SceneObject ReadObject(
     {
       throw fs::ParseError("sizes and radii must be positive");
     }
+    // Below a nanometre or above a million kilometres the object's own arithmetic (areas,
+    // normals, its projection) loses its digits: a size of 1e-300 made a plane of no area.
+    const double smallest = std::min({ o.size.minCoeff(), o.radius, o.tubeRadius, o.height });
+    const double largest = std::max({ o.size.maxCoeff(), o.radius, o.tubeRadius, o.height });
+    if (smallest < 1e-9 || largest > 1e9 || !std::isfinite(largest))
+    {
+      std::ostringstream s;
+      s << "sizes and radii must be between 1e-9 and 1e9 scene units (got "
+        << (smallest < 1e-9 ? smallest : largest) << ")";
+      throw fs::ParseError(s.str());
+    }
     o.translate = Vec3Or(node, "translate", o.translate);
     o.rotate = Vec3Or(node, "rotate", o.rotate);
     o.scale = Vec3Or(node, "scale", o.scale);
@@ -574,7 +585,10 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     }
     const double w = fs::Number(output, "width", 0);
     const double h = fs::Number(output, "height", 0);
-    if (!(w >= 0 && h >= 0 && w == std::floor(w) && h == std::floor(h)))
+    // Absent: the calibration's size; given, at least 1 (0 was taken silently for "absent").
+    const bool given[2] = { !output["width"].empty(), !output["height"].empty() };
+    if ((given[0] && !(w >= 1)) || (given[1] && !(h >= 1)) || !(w >= 0 && h >= 0) ||
+      w != std::floor(w) || h != std::floor(h))
     {
       throw fs::ParseError("output: width and height must be positive integers");
     }
