@@ -731,7 +731,9 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
       env->SetPanoramaRotation(bg.rotation);
       env->SetBackdropColor(bg.backdrop.x(), bg.backdrop.y(), bg.backdrop.z());
     }
-    in.Background = env;
+    // A synthesised background that a transparent output throws away is not made at all (it was
+    // most of the frame's time).
+    in.Background = this->TransparentBackground ? nullptr : env;
   }
   else if (bg.type == "image")
   {
