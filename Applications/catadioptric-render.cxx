@@ -17,6 +17,7 @@
 
 #include "CommandLine.h"
 #include "FileOutput.h"
+#include "ProgramOutput.h"
 #include "RunMain.h"
 #include "SceneDescription.h"
 #include "VideoIO.h"
@@ -442,7 +443,12 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
     }
     if (!renderer->RenderFrame(static_cast<int>(k)))
     {
-      return giveUp("frame " + std::to_string(k) + ": " + renderer->GetLastError(), 1);
+      // The renderer's error has been printed already when it came through VTK's output.
+      const std::string error = catar::ProgramOutputWindow::Message(renderer->GetLastError());
+      return giveUp("frame " + std::to_string(k) +
+          (error == catar::ProgramOutputWindow::LastError() ? std::string(" failed")
+                                                            : ": " + error),
+        1);
     }
     for (int s = perFrame; s < stages; ++s) // the background (decoding) and the frame's
     {
@@ -521,6 +527,8 @@ namespace
 {
 int Run(int argc, char* argv[])
 {
+  // VTK's errors and warnings: once each, as plain lines.
+  catar::ProgramOutputWindow::Install(kProgram);
   std::string scene;
   std::string outName = "catadioptric-render.png";
   int repeat = 1;
@@ -718,7 +726,7 @@ int Run(int argc, char* argv[])
   renderer->SetOutputPathLength(!depthName.empty());
   if (!renderer->LoadScene())
   {
-    std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
+    catar::PrintError(kProgram, renderer->GetLastError());
     return 1;
   }
   const long long frames = renderer->GetNumberOfFrames();
@@ -797,7 +805,7 @@ int Run(int argc, char* argv[])
     }
     if (!renderer->RenderFrame(static_cast<int>(first)))
     {
-      std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
+      catar::PrintError(kProgram, renderer->GetLastError());
       return 1;
     }
     for (int s = perFrame; s < stages; ++s)
@@ -827,7 +835,7 @@ int Run(int argc, char* argv[])
   }
   if (!renderer->WriteImage(outName.c_str()))
   {
-    std::fprintf(stderr, "catadioptric-render: %s\n", renderer->GetLastError());
+    catar::PrintError(kProgram, renderer->GetLastError());
     return 1;
   }
   if (!WriteMaskAndIds(renderer->GetOutput(), maskName, idsName) ||

@@ -54,7 +54,28 @@
 
 namespace
 {
-// Collects the error messages an algorithm reports.
+// A VTK error or warning text without its decoration: the "ERROR: In FILE, line N" line, the
+// "CLASS (0x...): " prefix and the trailing blank lines.
+std::string ShortMessage(std::string text)
+{
+  if (text.rfind("ERROR: In ", 0) == 0 || text.rfind("Warning: In ", 0) == 0)
+  {
+    const std::size_t eol = text.find('\n');
+    text = eol == std::string::npos ? std::string() : text.substr(eol + 1);
+  }
+  const std::size_t prefix = text.find("): ");
+  if (prefix != std::string::npos && text.find(" (0x") < prefix)
+  {
+    text = text.substr(prefix + 3);
+  }
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+  {
+    text.pop_back();
+  }
+  return text;
+}
+
+// Collects the error messages an algorithm reports, without VTK's decoration, "; " between.
 struct ErrorCollector
 {
   std::string Messages;
@@ -63,7 +84,8 @@ struct ErrorCollector
     auto* self = static_cast<ErrorCollector*>(clientData);
     if (callData)
     {
-      self->Messages += static_cast<const char*>(callData);
+      self->Messages +=
+        (self->Messages.empty() ? "" : "; ") + ShortMessage(static_cast<const char*>(callData));
     }
   }
 };
@@ -466,17 +488,8 @@ struct WarningCollector
     {
       return;
     }
-    std::string text = static_cast<const char*>(callData);
-    const std::size_t prefix = text.rfind("): ");
-    if (prefix != std::string::npos)
-    {
-      text = text.substr(prefix + 3);
-    }
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-    {
-      text.pop_back();
-    }
-    static_cast<WarningCollector*>(clientData)->Lines.push_back(text);
+    static_cast<WarningCollector*>(clientData)
+      ->Lines.push_back(ShortMessage(static_cast<const char*>(callData)));
   }
 };
 
@@ -545,7 +558,10 @@ vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::Remesh(vtkPolyData* me
   remesher->Update();
   if (remesher->GetErrorCode() != 0 || !errors.Messages.empty())
   {
-    throw std::runtime_error("remeshing failed: " + errors.Messages);
+    const std::string said = "Remeshing failed: ";
+    throw std::runtime_error("remeshing failed: " +
+      (errors.Messages.rfind(said, 0) == 0 ? errors.Messages.substr(said.size())
+                                           : errors.Messages));
   }
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->ShallowCopy(remesher->GetOutput());

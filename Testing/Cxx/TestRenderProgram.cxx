@@ -11,6 +11,8 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -71,6 +73,30 @@ TEST(RenderProgram, UsageErrorsOnceWithStatusTwo)
     EXPECT_EQ(run.output.rfind("catadioptric-render: ", 0), 0u) << run.output;
     EXPECT_NE(run.output.find("--help"), std::string::npos) << run.output;
     EXPECT_EQ(run.output.find('\x1b'), std::string::npos) << run.output;
+  }
+}
+
+// An error inside the VTK pipeline is printed once, as one plain line: no VTK log decoration
+// (colours, file and line, the object's address), no executive dump, not again by the program.
+TEST(RenderProgram, ErrorsOnceAsPlainLines)
+{
+  for (const char* name : { "remesh-runaway-pixel-tolerance", "huge-coordinates-shadows" })
+  {
+    const std::string scene = std::string(CATAR_SOURCE_DIR) + "/Testing/Corpus/" + name + ".yaml";
+    const auto run = Render("'" + scene + "' -o '" + ::testing::TempDir() + "/catar_error.png'");
+    EXPECT_EQ(run.status, 1) << run.output;
+    EXPECT_EQ(run.output.find('\x1b'), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("ERROR: In"), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("(0x"), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("returned failure"), std::string::npos) << run.output;
+    // Every line is the program's, and no line comes twice.
+    std::istringstream lines(run.output);
+    std::set<std::string> seen;
+    for (std::string line; std::getline(lines, line);)
+    {
+      EXPECT_EQ(line.rfind("catadioptric-render: ", 0), 0u) << line;
+      EXPECT_TRUE(seen.insert(line).second) << "printed twice: " << line;
+    }
   }
 }
 
