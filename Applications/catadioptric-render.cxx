@@ -474,6 +474,10 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
     std::fprintf(stderr, "catadioptric-render: %s\n", error.c_str());
     return 1;
   }
+  if (!writer.GetNote().empty())
+  {
+    std::fprintf(stderr, "catadioptric-render: warning: %s\n", writer.GetNote().c_str());
+  }
   const double total = Seconds(start, Clock::now());
   const long long n = end - first;
   if (Json)

@@ -339,6 +339,7 @@ struct FrameWriter::Internals
   bool video = false;
   int width = 0, height = 0;
   long long written = 0;
+  std::string note; // what Finish found worth saying (a size the codec changed)
   cv::VideoWriter writer;
 };
 
@@ -346,7 +347,8 @@ namespace
 {
 // Frames of the video file `name` that can be read: the container's count when it says so, else
 // (or when it differs from `expected`) counted by reading through.
-long long ReadableFrames(const std::string& name, long long expected)
+long long ReadableFrames(
+  const std::string& name, long long expected, int* width = nullptr, int* height = nullptr)
 {
   cv::VideoCapture capture;
   try
@@ -354,6 +356,11 @@ long long ReadableFrames(const std::string& name, long long expected)
     if (!capture.open(name, cv::CAP_FFMPEG))
     {
       return 0;
+    }
+    if (width && height)
+    {
+      *width = static_cast<int>(capture.get(cv::CAP_PROP_FRAME_WIDTH));
+      *height = static_cast<int>(capture.get(cv::CAP_PROP_FRAME_HEIGHT));
     }
     const long long said = static_cast<long long>(capture.get(cv::CAP_PROP_FRAME_COUNT));
     long long n = 0;
@@ -396,6 +403,11 @@ long long FrameWriter::GetNumberOfFramesWritten() const
   return this->Internal->written;
 }
 
+std::string FrameWriter::GetNote() const
+{
+  return this->Internal->note;
+}
+
 bool FrameWriter::Finish(std::string& error)
 {
   Internals& in = *this->Internal;
@@ -406,7 +418,16 @@ bool FrameWriter::Finish(std::string& error)
   in.writer.release();
   const std::string temporary = in.temporary;
   in.temporary.clear();
-  const long long readable = ReadableFrames(temporary, in.written);
+  int width = 0, height = 0;
+  const long long readable = ReadableFrames(temporary, in.written, &width, &height);
+  in.note.clear();
+  if (readable > 0 && (width != in.width || height != in.height))
+  {
+    in.note = "the video '" + in.name + "' is " + std::to_string(width) + "x" +
+      std::to_string(height) + ", not " + std::to_string(in.width) + "x" +
+      std::to_string(in.height) +
+      ": its codec takes even sizes only (numbered images keep the size)";
+  }
   if (readable != in.written)
   {
     std::remove(temporary.c_str());

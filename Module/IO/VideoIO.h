@@ -111,6 +111,9 @@ public:
   void Abandon(std::string& what);
   /// Frames written so far.
   long long GetNumberOfFramesWritten() const;
+  /// After Finish: what is worth telling the user about the video written ("" when nothing):
+  /// a size the codec changed (odd sizes are rounded to even ones).
+  std::string GetNote() const;
   /// The name an abandoned video is kept under: clip.mp4 -> clip.partial.mp4.
   static std::string PartialName(const std::string& name);
 

@@ -332,3 +332,27 @@ TEST(OutputIntegrity, TwoWritersLeaveOneWholeVideo)
     << "the file is neither video whole";
   EXPECT_EQ(Frames(dir + "/both.avi"), 300);
 }
+
+// A video codec that takes even sizes only: a 161 x 121 camera's video is 160 x 120, and the
+// program says so (it said nothing before).
+TEST(OutputIntegrity, OddSizedVideoIsSaid)
+{
+  const std::string dir = Folder("odd-size");
+  std::ofstream(dir + "/odd.yaml") << R"(camera:
+  image_width: 161
+  image_height: 121
+  camera_matrix: [ 120.0, 0.0, 80.0, 0.0, 120.0, 60.0, 0.0, 0.0, 1.0 ]
+  mirror: { type: sphere, center: [ 0.0, 0.0, 0.14 ], radius: 0.05 }
+  world_to_camera: [ 1, 0, 0, 0,  0, 0, -1, 1,  0, 1, 0, 0.14,  0, 0, 0, 1 ]
+background: { type: color }
+sequence: { frames: 3 }
+objects:
+  - { type: sphere, radius: 0.05, translate: [ 0.0, -0.2, 0.95 ] }
+)";
+  const catar_test::ProgramRun run =
+    Render("'" + dir + "/odd.yaml' -o '" + dir + "/odd.avi' --quiet");
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("warning: the video"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("is 160x120, not 161x121"), std::string::npos) << run.output;
+  EXPECT_EQ(Frames(dir + "/odd.avi"), 3);
+}
