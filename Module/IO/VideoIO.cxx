@@ -177,6 +177,7 @@ struct FrameReader::Internals
   int width = 0, height = 0;
   cv::VideoCapture capture;
   long long next = 0; // the video frame the capture reads next
+  std::string note; // what Open found worth saying (a gap in numbered frames)
 };
 
 FrameReader::FrameReader()
@@ -210,6 +211,18 @@ bool FrameReader::Open(const std::string& name, std::string& error)
       error = "no frames: neither " + FrameFileName(name, 0) + " nor " + FrameFileName(name, 1) +
         " exists";
       return false;
+    }
+    // A gap: the sequence stops at the first missing number; say so when files follow it.
+    const long long missing = in.first + in.count;
+    for (long long k = missing + 1; k <= missing + 1000; ++k)
+    {
+      if (FileExists(FrameFileName(name, k)))
+      {
+        in.note = "the frames " + name + " stop at " + FrameFileName(name, missing - 1) + ": " +
+          FrameFileName(name, missing) + " is missing, though " + FrameFileName(name, k) +
+          " exists (frames after a gap are not read)";
+        break;
+      }
     }
     return true;
   }
@@ -251,6 +264,11 @@ bool FrameReader::Open(const std::string& name, std::string& error)
     in.fps = 0.0;
   }
   return true;
+}
+
+std::string FrameReader::GetNote() const
+{
+  return this->Internal->note;
 }
 
 long long FrameReader::GetNumberOfFrames() const

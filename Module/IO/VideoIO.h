@@ -41,6 +41,9 @@ public:
   bool Open(const std::string& name, std::string& error);
   /// The number of frames (for a video, what its container says).
   long long GetNumberOfFrames() const;
+  /// What Open found worth telling the user ("" when nothing): a gap in numbered frames, after
+  /// which the frames are not read.
+  std::string GetNote() const;
   /// Frames a second: the video's, or 0 for an image sequence (no rate of its own).
   double GetFrameRate() const;
   /// Frame k (0-based). Reading in order is fastest; a video seeks back by reopening. False with

@@ -800,6 +800,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
       throw fs::ParseError("sequence: 'frames' must be an integer in [1, 10000000]");
     }
     scene.sequence.frames = static_cast<int>(frames);
+    scene.sequence.given = true;
     scene.sequence.fps = fs::Number(sequence, "fps", scene.sequence.fps);
     if (!(scene.sequence.fps > 0.0 && scene.sequence.fps <= 1000.0))
     {

@@ -151,6 +151,7 @@ struct SceneSequence
 {
   int frames = 1;
   double fps = 30.0;
+  bool given = false; ///< the scene has a `sequence` key (else keyframes set the frames)
 };
 
 struct SceneDescription

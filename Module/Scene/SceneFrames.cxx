@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace catar
 {
@@ -47,6 +48,30 @@ bool SceneFrames::Plan(
   }
   this->count = scene.sequence.frames;
   this->fps = scene.sequence.fps;
+  if (!scene.sequence.given)
+  {
+    // Keyframes and no `sequence`: the frames the keyframes span, at the sequence's rate (one
+    // frame, before, and nothing said).
+    double last = 0.0;
+    for (const SceneObject& o : scene.objects)
+    {
+      last = o.keyframes.frames.empty() ? last : std::max(last, o.keyframes.frames.back().time);
+    }
+    for (const SceneLight& l : scene.lighting.lights)
+    {
+      last = l.keyframes.empty() ? last : std::max(last, l.keyframes.back().time);
+    }
+    if (last > 0.0)
+    {
+      this->count = static_cast<long long>(std::min(1e7, std::floor(last * this->fps + 1e-9) + 1));
+      char text[200];
+      std::snprintf(text, sizeof text,
+        "the keyframes run to %g s and the scene has no 'sequence': rendering %lld frames at %g "
+        "frames a second (give 'sequence: { frames: N }' for another number)",
+        last, this->count, this->fps);
+      this->note = text;
+    }
+  }
   return true;
 }
 

@@ -397,6 +397,10 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     vtkErrorMacro(<< in.Error);
     return false;
   }
+  if (videoFrames > 0 && !in.Video.GetNote().empty())
+  {
+    in.Frames.note += (in.Frames.note.empty() ? "" : "; ") + in.Video.GetNote();
+  }
   // Pose from markers: the renderer's board file, else the scene's.
   const std::string boardFile = this->MarkerBoardFileName && *this->MarkerBoardFileName
     ? std::string(this->MarkerBoardFileName)

@@ -233,6 +233,57 @@ TEST(Sequence, KeyframedObjectsStandWhereTheStillSceneHasThem)
   EXPECT_GT(DifferingShare(half, last, 2), 0.005) << "the object moved";
 }
 
+// Keyframes and no `sequence` key: the frames the keyframes span, at 30 a second, and a note
+// that says so (one frame before, and nothing said).
+TEST(Sequence, KeyframesWithoutASequenceKeySpanTheirTime)
+{
+  const std::string dir = Folder("keyframes-span");
+  const std::string keys = R"(, keyframes: [ { time: 0, rotate: [ 70, 0, 20 ] },
+      { time: 2, rotate: [ 70, 0, 100 ] } ])";
+  Write(dir + "/span.yaml", Scene(Pose(0, 0), "", "[ 70, 0, 20 ]", keys));
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName((dir + "/span.yaml").c_str());
+  ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+  EXPECT_EQ(r->GetNumberOfFrames(), 61);
+  EXPECT_NE(std::string(r->GetSequenceNote()).find("keyframes run to 2 s"), std::string::npos)
+    << r->GetSequenceNote();
+  // With the key, the key decides, and nothing is said.
+  Write(dir + "/given.yaml",
+    Scene(Pose(0, 0), "sequence: { frames: 3, fps: 2 }\n", "[ 70, 0, 20 ]", keys));
+  r->SetSceneFileName((dir + "/given.yaml").c_str());
+  ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+  EXPECT_EQ(r->GetNumberOfFrames(), 3);
+  EXPECT_STREQ(r->GetSequenceNote(), "");
+}
+
+// Numbered background frames with a gap: the sequence stops at the gap, and a note says so.
+TEST(Sequence, AGapInNumberedFramesIsSaid)
+{
+  const std::string dir = Folder("gap");
+  for (const int k : { 1, 2, 3, 5, 6 })
+  {
+    catar::Frame f;
+    f.width = 240;
+    f.height = 190;
+    f.rgba.assign(static_cast<std::size_t>(240) * 190 * 4, 128);
+    catar::FrameWriter writer;
+    std::string error;
+    ASSERT_TRUE(writer.Open(dir + "/bg_%03d.png", 240, 190, 0.0, error)) << error;
+    ASSERT_TRUE(writer.Write(k, f, error)) << error;
+  }
+  std::string text = Scene(Pose(0, 0), "", "[ 70, 0, 20 ]");
+  text.replace(text.find("background: { type: color, color: [ 0.1, 0.1, 0.1 ] }"), 53,
+    "background: { type: video, file: bg_%03d.png, fps: 5 }");
+  Write(dir + "/scene.yaml", text);
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName((dir + "/scene.yaml").c_str());
+  ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+  EXPECT_EQ(r->GetNumberOfFrames(), 3);
+  const std::string note = r->GetSequenceNote();
+  EXPECT_NE(note.find("bg_004.png is missing"), std::string::npos) << note;
+  EXPECT_NE(note.find("bg_005.png exists"), std::string::npos) << note;
+}
+
 // Frame to frame, a still camera keeps the projection of still objects; a moving light redoes
 // the lighting only; a moving object redoes its own projection only; a moving camera all of them.
 TEST(Sequence, OnlyWhatMovedIsRecomputed)
