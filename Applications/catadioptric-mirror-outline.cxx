@@ -121,7 +121,8 @@ int Run(int argc, char* argv[])
 
   catar::CameraModel camera;
   std::string error;
-  if (!catar::LoadCalibration(calibration, camera, error))
+  // The lens is what is needed: a calibration of the bare camera (no mirror) is read too.
+  if (!catar::LoadLensCalibration(calibration, camera, error))
   {
     return Error(error);
   }

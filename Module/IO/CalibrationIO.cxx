@@ -125,7 +125,7 @@ std::vector<double> MatrixNumbers(const Node& node, const std::string& key, std:
 }
 } // namespace
 
-void ReadCalibration(const Node& node, CameraModel& m)
+void ReadCalibration(const Node& node, CameraModel& m, bool mirrorRequired)
 {
   if (!node.isMap())
   {
@@ -201,7 +201,10 @@ void ReadCalibration(const Node& node, CameraModel& m)
     }
     model.distortion = Distortion{ d[0], d[1], d[2], d[3], d[4] };
   }
-  model.mirror = ReadMirror(node["mirror"]);
+  if (mirrorRequired || !node["mirror"].empty())
+  {
+    model.mirror = ReadMirror(node["mirror"]);
+  }
   const Node pose = node["world_to_camera"];
   if (!pose.empty() && !pose.isNone())
   {
@@ -225,11 +228,12 @@ void ReadCalibration(const Node& node, CameraModel& m)
 
 namespace
 {
-bool ReadRoot(const fs::Node& root, const std::string& what, CameraModel& model, std::string& error)
+bool ReadRoot(const fs::Node& root, const std::string& what, CameraModel& model, std::string& error,
+  bool mirrorRequired = true)
 {
   try
   {
-    fs::ReadCalibration(root, model);
+    fs::ReadCalibration(root, model, mirrorRequired);
     return true;
   }
   catch (const std::exception& e)
@@ -282,6 +286,12 @@ bool LoadCalibration(const std::string& path, CameraModel& model, std::string& e
 {
   fs::Node root;
   return fs::Parse(path, false, path, root, error) && ReadRoot(root, path, model, error);
+}
+
+bool LoadLensCalibration(const std::string& path, CameraModel& model, std::string& error)
+{
+  fs::Node root;
+  return fs::Parse(path, false, path, root, error) && ReadRoot(root, path, model, error, false);
 }
 
 bool ParseCalibration(const std::string& text, CameraModel& model, std::string& error)

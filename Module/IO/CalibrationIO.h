@@ -18,6 +18,10 @@ namespace catar
 /// offending key); `model` is left unchanged.
 bool LoadCalibration(const std::string& path, CameraModel& model, std::string& error);
 
+/// LoadCalibration for a file that may describe the lens alone (OpenCV's calibration of the bare
+/// camera: no `mirror`): the model keeps its own mirror then. For the tools that find the mirror.
+bool LoadLensCalibration(const std::string& path, CameraModel& model, std::string& error);
+
 /// Reads a calibration given as text (YAML or JSON), for embedding. Same rules as LoadCalibration.
 bool ParseCalibration(const std::string& text, CameraModel& model, std::string& error);
 

@@ -107,7 +107,9 @@ bool Parse(
   const std::string& source, bool isText, const std::string& what, Node& root, std::string& error);
 
 /// Reads the calibration keys from a map node.
-void ReadCalibration(const Node& node, CameraModel& model);
+/// mirrorRequired false: a calibration of the lens alone (no `mirror` key) is read too, the model's
+/// mirror left as it is.
+void ReadCalibration(const Node& node, CameraModel& model, bool mirrorRequired = true);
 } // namespace fs
 } // namespace catar
 

@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -532,6 +533,30 @@ TEST(MirrorOutline, ProgramFindsTheCentre)
   run = RunOutlineProgram("'" + calibration + "' '" + image + "'");
   EXPECT_EQ(run.status, 2) << run.output;
   EXPECT_EQ(run.output.rfind("catadioptric-mirror-outline: ", 0), 0u) << run.output;
+  // A calibration of the lens alone (OpenCV's of the bare camera, no mirror): read, the mirror
+  // found as with the other.
+  {
+    const CameraModel& m = rendered;
+    std::ofstream lens(TempPath("lens.yaml"));
+    lens.precision(17);
+    lens << "image_width: " << w << "\nimage_height: " << h << "\ncamera_matrix: [ "
+         << m.intrinsics.fx << ", " << m.intrinsics.skew << ", " << m.intrinsics.cx << ", 0, "
+         << m.intrinsics.fy << ", " << m.intrinsics.cy << ", 0, 0, 1 ]\n"
+         << "distortion_coefficients: [ " << m.distortion.k1 << ", " << m.distortion.k2 << ", "
+         << m.distortion.p1 << ", " << m.distortion.p2 << ", " << m.distortion.k3 << " ]\n";
+  }
+  run = RunOutlineProgram(
+    "'" + TempPath("lens.yaml") + "' '" + image + "' --radius 0.05 -o '" + written + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::size_t lensAt = run.output.find("centre: ");
+  ASSERT_NE(lensAt, std::string::npos) << run.output;
+  Vec3 fromLens;
+  std::istringstream(run.output.substr(lensAt + 8)) >> fromLens.x() >> fromLens.y() >> fromLens.z();
+  EXPECT_LT((fromLens - printed).norm(), 1e-9) << run.output;
+  ASSERT_TRUE(LoadCalibration(written, loaded, error)) << error;
+  ASSERT_TRUE(SphereMirror::From(loaded.mirror, found)) << loaded.mirror.type;
+  EXPECT_EQ(found.radius, radius);
+
   // A radius far out of scale: an error that names the radius, never "rms: -nan" and status 0.
   std::remove(written.c_str());
   run =
