@@ -11,10 +11,22 @@ CatadioptricARFilters, CatadioptricARRendering and CatadioptricARScene (scene fi
 VTK itself (ParaView's vtkmodules) is imported as needed.
 """
 
-from .CatadioptricARCommon import *  # noqa: F401,F403
-from .CatadioptricARFilters import *  # noqa: F401,F403
-from .CatadioptricARRendering import *  # noqa: F401,F403
-from .CatadioptricARScene import *  # noqa: F401,F403
+try:
+    import vtkmodules.vtkCommonCore  # noqa: F401  (ParaView's VTK, which the modules are built on)
+except ImportError as _error:
+    import sys as _sys
+
+    raise ImportError(
+        "catadioptricar needs ParaView's VTK (Debian's paraview-dev), which this Python (%s, "
+        "Python %d.%d) cannot import: %s. Use Debian's /usr/bin/python3 or pvpython; a pip, "
+        "conda or pyenv Python has another VTK or none."
+        % (_sys.executable, _sys.version_info[0], _sys.version_info[1], _error)
+    ) from _error
+
+from .CatadioptricARCommon import *  # noqa: F401,F403,E402
+from .CatadioptricARFilters import *  # noqa: F401,F403,E402
+from .CatadioptricARRendering import *  # noqa: F401,F403,E402
+from .CatadioptricARScene import *  # noqa: F401,F403,E402
 
 __all__ = [name for name in dir() if name.startswith("vtk")]
 
