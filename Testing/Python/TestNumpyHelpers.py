@@ -39,6 +39,9 @@ check((car.image_to_numpy(car.numpy_to_image(a), bgr=True) == a[:, :, [2, 1, 0, 
       "image_to_numpy bgr")
 check((car.image_to_numpy(car.numpy_to_image(a, bgr=True)) == a[:, :, [2, 1, 0, 3]]).all(),
       "numpy_to_image bgr")
+# A big-endian array gives its values, not its bytes in another order.
+big = np.arange(12, dtype=">u2").reshape(3, 4) * 1000
+check((car.image_to_numpy(car.numpy_to_image(big))[..., 0] == big).all(), "big-endian values")
 for bad in [np.zeros((2, 3, 5), np.uint8), np.zeros((0, 3), np.uint8), np.zeros(4, np.uint8)]:
     try:
         car.numpy_to_image(bad)
@@ -70,6 +73,10 @@ for solver, code in (("quartic", 0), ("iterative", 1)):
           "loop; largest difference %.1e, statuses differing %d"
           % (solver, n, valid, 1e6 * vectorised / n, 1e6 * loop / n, worst, mismatched))
     check(valid > 300, "valid projections (%d)" % valid)
+    has = statuses <= car.vtkCatadioptricCamera.OUTSIDE_IMAGE
+    check((~has).sum() > 0 and np.isnan(pixels[~has]).all() and np.isnan(mirror[~has]).all(),
+          "NaN pixels and mirror points where there is no projection (%d)" % (~has).sum())
+    check(not np.isnan(pixels[has]).any(), "numbers where there is a projection")
     check(mismatched == 0 and worst == 0.0, "project_points equals ProjectWorldPoint (%s)" % solver)
 
 # Back projection: a grid of pixels; equal to BackProjectPixel; inverse of the projection.
@@ -100,11 +107,17 @@ error = np.abs(pixels - grid[valid]).max()
 print("back projection then projection: largest pixel error %.1e" % error)
 check((statuses_back <= car.vtkCatadioptricCamera.OUTSIDE_IMAGE).all() and error < 1e-6,
       "projection inverts back projection (%.1e px)" % error)
-try:
-    car.project_points(camera, np.zeros((4, 2)))
-    check(False, "project_points accepted N x 2")
-except ValueError:
-    pass
+# Any shape but N x 3 (N x 2 for pixels) is refused, and the message names the shape given:
+# a 3 x N array is not reinterpreted as N x 3 rows of mixed-up coordinates.
+for function, bad in ((car.project_points, np.zeros((4, 2))), (car.project_points, np.zeros((3, 2))),
+                      (car.project_points, points[:5].T), (car.back_project, np.zeros((4, 3))),
+                      (car.back_project, grid[:7].T), (car.project_points, np.zeros((2, 3, 1)))):
+    try:
+        function(camera, bad)
+        check(False, "%s accepted shape %s" % (function.__name__, bad.shape))
+    except ValueError as e:
+        check(str(bad.shape) in str(e), "the message names the shape: %s" % e)
+check(car.project_points(camera, points[0])[0].shape == (1, 2), "one point of 3")
 
 # Poses and 4x4 mirror keys as 4x4 numpy arrays: the same as their 16 numbers row by row.
 pose = np.array([[0.0, -1.0, 0.0, 0.02], [0.0, 0.0, -1.0, 1.0], [1.0, 0.0, 0.0, 0.14],
@@ -170,7 +183,9 @@ bgr = car.render_mesh(centre + radius * ico, faces, frame=frame_in[:, :, ::-1], 
                       color=(0.0, 1.0, 0.0))
 check((bgr == drawn[:, :, [2, 1, 0, 3]]).all(), "render_mesh bgr")
 for bad, error in (((ico, [[0, 1, 12]]), ValueError), ((ico[:, :2], faces), ValueError),
-                   ((ico, faces, "/nonexistent/calibration.yaml"), RuntimeError)):
+                   ((ico, faces, "/nonexistent/calibration.yaml"), RuntimeError),
+                   ((ico, faces, None, None, (float("nan"), 0, 0)), ValueError),
+                   ((ico, faces, None, None, (1, 1, 1), (0, 0, float("inf"), 1)), ValueError)):
     try:
         car.render_mesh(*bad)
         check(False, "render_mesh accepted %s" % (error.__name__,))

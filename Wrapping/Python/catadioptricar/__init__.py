@@ -155,6 +155,9 @@ def numpy_to_image(array, bgr=False):
                          "not %s" % (a.shape,))
     if bgr and a.shape[2] >= 3:
         a = a[:, :, [2, 1, 0] + list(range(3, a.shape[2]))]
+    if a.dtype.byteorder not in ("=", "|"):
+        # VTK's arrays are in the machine's byte order: a big-endian array's values, not its bytes.
+        a = a.astype(a.dtype.newbyteorder("="))
     height, width, channels = a.shape
     flat = np.ascontiguousarray(a[::-1]).reshape(-1, channels)
     image = vtkImageData()
@@ -169,6 +172,21 @@ def _vtk_out(kind):
     from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIntArray
 
     return vtkDoubleArray() if kind == "double" else vtkIntArray()
+
+
+def _rows(function, values, width):
+    """``values`` as a contiguous float64 ``N x width`` array; one row of ``width`` is ``1 x
+    width``. Any other shape (``width x N`` among them) is refused: reshaping it would pair up
+    the wrong numbers."""
+    np = _numpy()
+    a = np.asarray(values, dtype=np.float64)
+    if a.ndim == 1 and a.shape[0] == width:
+        a = a.reshape(1, width)
+    if a.ndim != 2 or a.shape[1] != width:
+        raise ValueError("%s: expected an N x %d array (or one row of %d), not shape %s%s"
+                         % (function, width, width, a.shape,
+                            " (transpose it: .T)" if a.ndim == 2 and a.shape[0] == width else ""))
+    return np.ascontiguousarray(a)
 
 
 def project_points(camera, points, solver="quartic"):
@@ -188,11 +206,19 @@ def project_points(camera, points, solver="quartic"):
     -------
     pixels : numpy.ndarray
         ``N x 2`` pixel coordinates (OpenCV's convention: (0, 0) the centre of the top-left
-        pixel); zero where the status says there is no projection.
+        pixel); NaN where the status says there is no projection (neither ``VALID`` nor
+        ``OUTSIDE_IMAGE``).
     statuses : numpy.ndarray
         ``N`` status codes (``vtkCatadioptricCamera.VALID`` = 0, ``OUTSIDE_IMAGE``, ...).
     mirror_points : numpy.ndarray
-        ``N x 3`` reflection points on the mirror, in the camera frame.
+        ``N x 3`` reflection points on the mirror, in the camera frame; NaN where there is no
+        projection.
+
+    Raises
+    ------
+    ValueError
+        ``points`` not ``N x 3`` (a ``3 x N`` array is refused, not reinterpreted), or an
+        unknown solver.
 
     Examples
     --------
@@ -209,14 +235,19 @@ def project_points(camera, points, solver="quartic"):
     np = _numpy()
     if solver not in ("quartic", "iterative"):
         raise ValueError("project_points: solver must be 'quartic' or 'iterative', not %r" % (solver,))
-    p = np.ascontiguousarray(np.asarray(points, dtype=np.float64).reshape(-1, 3))
+    p = _rows("project_points", points, 3)
     pixels, statuses, mirror = _vtk_out("double"), _vtk_out("int"), _vtk_out("double")
     if not camera.ProjectWorldPoints(numpy_to_vtk(p, deep=True), pixels, statuses, mirror,
                                      1 if solver == "iterative" else 0):
         raise ValueError(camera.GetLastError())
     n = p.shape[0]
-    return (vtk_to_numpy(pixels).reshape(n, 2).copy(), vtk_to_numpy(statuses).reshape(n).copy(),
-            vtk_to_numpy(mirror).reshape(n, 3).copy())
+    px = vtk_to_numpy(pixels).reshape(n, 2).copy()
+    st = vtk_to_numpy(statuses).reshape(n).copy()
+    mp = vtk_to_numpy(mirror).reshape(n, 3).copy()
+    none = (st != vtkCatadioptricCamera.VALID) & (st != vtkCatadioptricCamera.OUTSIDE_IMAGE)  # noqa: F405
+    px[none] = np.nan
+    mp[none] = np.nan
+    return px, st, mp
 
 
 def back_project(camera, pixels):
@@ -233,9 +264,10 @@ def back_project(camera, pixels):
     Returns
     -------
     origins : numpy.ndarray
-        ``N x 3`` points where the rays leave the mirror, world frame.
+        ``N x 3`` points where the rays leave the mirror, world frame; NaN where the pixel has
+        no ray (status neither ``VALID`` nor ``OUTSIDE_IMAGE``).
     directions : numpy.ndarray
-        ``N x 3`` unit directions of the reflected rays, world frame.
+        ``N x 3`` unit directions of the reflected rays, world frame; NaN where no ray.
     statuses : numpy.ndarray
         ``N`` status codes (``vtkCatadioptricCamera.VALID`` = 0 where the pixel sees the mirror).
 
@@ -250,14 +282,18 @@ def back_project(camera, pixels):
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
     np = _numpy()
-    q = np.ascontiguousarray(np.asarray(pixels, dtype=np.float64).reshape(-1, 2))
+    q = _rows("back_project", pixels, 2)
     origins, directions, statuses = _vtk_out("double"), _vtk_out("double"), _vtk_out("int")
     if not camera.BackProjectPixels(numpy_to_vtk(q, deep=True), origins, directions, statuses):
         raise ValueError(camera.GetLastError())
     n = q.shape[0]
-    return (vtk_to_numpy(origins).reshape(n, 3).copy(),
-            vtk_to_numpy(directions).reshape(n, 3).copy(),
-            vtk_to_numpy(statuses).reshape(n).copy())
+    o = vtk_to_numpy(origins).reshape(n, 3).copy()
+    d = vtk_to_numpy(directions).reshape(n, 3).copy()
+    st = vtk_to_numpy(statuses).reshape(n).copy()
+    none = (st != vtkCatadioptricCamera.VALID) & (st != vtkCatadioptricCamera.OUTSIDE_IMAGE)  # noqa: F405
+    o[none] = np.nan
+    d[none] = np.nan
+    return o, d, st
 
 
 def render(scene_file=None, bgr=False, antialias=0):
@@ -362,6 +398,10 @@ def render_mesh(vertices, triangles, camera=None, frame=None, color=(0.8, 0.8, 0
                          % (t.shape, t.dtype))
     if t.size and (t.min() < 0 or t.max() >= len(v)):
         raise ValueError("render_mesh: triangle indices must be 0 to %d" % (len(v) - 1))
+    for name, value, size in (("color", color, 3), ("background", background, 4)):
+        c = np.asarray(value, dtype=np.float64)
+        if c.shape != (size,) or not np.isfinite(c).all():
+            raise ValueError("render_mesh: %s must be %d finite numbers, not %r" % (name, size, value))
     points = vtkPoints()
     points.SetData(numpy_to_vtk(np.ascontiguousarray(v), deep=True))
     cells = vtkCellArray()
