@@ -134,6 +134,16 @@ int vtkCatadioptricImageSink::CheckFrame(vtkImageData* frame, int width, int hei
                                   << width << "x" << height << ".");
     return -1;
   }
+  // The pixels are read through the array's pointer: it must hold every pixel the extent says
+  // (an array set shorter, from Python or C++, was read past its end).
+  const vtkIdType pixels = static_cast<vtkIdType>(dims[0]) * dims[1];
+  if (scalars->GetNumberOfTuples() < pixels)
+  {
+    vtkErrorMacro("The frame's scalars hold " << scalars->GetNumberOfTuples() << " pixels but its "
+                                              << dims[0] << "x" << dims[1] << " extent has "
+                                              << pixels << ".");
+    return -1;
+  }
   return components;
 }
 

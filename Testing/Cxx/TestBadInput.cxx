@@ -228,6 +228,35 @@ TEST(BadInput, ArraysShorterThanTheirPointsOrCellsAreRefused)
   EXPECT_EQ(compositorErrors->Count, 1);
   EXPECT_TRUE(Contains(compositorErrors->Last, "cell array 'Colors' has 3 tuples"))
     << compositorErrors->Last;
+
+  // A frame whose scalars are shorter than its extent (as Python can set them): refused by both
+  // sinks; it was read past the array's end.
+  vtkSmartPointer<vtkCatadioptricCamera> camera = DemoCamera();
+  const int w = camera->GetImageWidth(), h = camera->GetImageHeight();
+  vtkNew<vtkImageData> frame;
+  frame->SetDimensions(w, h, 1);
+  vtkNew<vtkUnsignedCharArray> pixels;
+  pixels->SetNumberOfComponents(3);
+  pixels->SetNumberOfTuples(10);
+  pixels->FillValue(7);
+  frame->GetPointData()->SetScalars(pixels);
+  vtkNew<vtkCatadioptricCompositor> onFrame;
+  vtkNew<ErrorCounter> frameErrors;
+  frameErrors->Watch(onFrame);
+  onFrame->SetInputData(0, frame);
+  onFrame->AddMeshData(Projected(Sphere()));
+  onFrame->Update();
+  EXPECT_EQ(frameErrors->Count, 1);
+  EXPECT_TRUE(Contains(frameErrors->Last, "scalars hold 10 pixels")) << frameErrors->Last;
+  vtkNew<vtkCatadioptricRayTracer> tracer;
+  vtkNew<ErrorCounter> tracerErrors;
+  tracerErrors->Watch(tracer);
+  tracer->SetCamera(camera);
+  tracer->SetInputData(0, frame);
+  tracer->AddMeshData(Projected(Sphere()));
+  tracer->Update();
+  EXPECT_GE(tracerErrors->Count, 1);
+  EXPECT_TRUE(Contains(tracerErrors->Last, "scalars hold 10 pixels")) << tracerErrors->Last;
 }
 
 TEST(BadInput, EmptyOrNonIntegerTextureIndexIsRefused)
