@@ -6,6 +6,7 @@
 // Each CSV row is u,v,X,Y,Z: a pixel (pixel (0,0) is the centre of the top-left pixel) and the
 // world point seen there. Exit status: 0 success, 1 bad input or no pose, 2 usage error.
 #include "CalibrationIO.h"
+#include "FileInput.h"
 #include "PoseEstimation.h"
 
 #include "CommandLine.h"
@@ -106,6 +107,12 @@ bool IsHeader(const std::vector<std::string>& fields)
 // header. Returns an empty string, or the sentence that names the bad line.
 std::string ReadPoints(const std::string& path, std::vector<catar::PoseObservation>& points)
 {
+  // A regular file of at most 256 MiB: /dev/zero or a FIFO is refused, not read without end.
+  std::string error;
+  if (!catar::CheckInputFile(path, std::uint64_t(1) << 28, error))
+  {
+    return error;
+  }
   std::ifstream in(path);
   if (!in)
   {

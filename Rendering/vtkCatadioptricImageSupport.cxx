@@ -1,5 +1,7 @@
 #include "vtkCatadioptricImageSupport.h"
 
+#include "FileInput.h"
+
 #include "CameraModel.h"
 
 #include "vtkCatadioptricArrayNames.h"
@@ -191,9 +193,9 @@ vtkDataArray* vtkCatadioptricImageSupport::TextureCoordinates(vtkPolyData* mesh)
 vtkSmartPointer<vtkImageData> vtkCatadioptricImageSupport::ReadImageFile(
   const std::string& path, std::string& error)
 {
-  if (!std::ifstream(path).good())
+  // A regular file (a FIFO would block, a device never end).
+  if (!catar::CheckInputFile(path, std::uint64_t(1) << 32, error))
   {
-    error = "cannot open '" + path + "'";
     return nullptr;
   }
   cv::Mat image;

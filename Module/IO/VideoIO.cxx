@@ -1,6 +1,7 @@
 #include "VideoIO.h"
 
 #include "CameraModel.h" // kMaxImagePixels
+#include "FileInput.h"   // CheckInputFile
 #include "FileOutput.h"  // WriteWholeFile
 
 #include <opencv2/core.hpp>
@@ -177,7 +178,7 @@ struct FrameReader::Internals
   int width = 0, height = 0;
   cv::VideoCapture capture;
   long long next = 0; // the video frame the capture reads next
-  std::string note; // what Open found worth saying (a gap in numbered frames)
+  std::string note;   // what Open found worth saying (a gap in numbered frames)
 };
 
 FrameReader::FrameReader()
@@ -296,6 +297,10 @@ bool FrameReader::Read(long long k, Frame& frame, std::string& error)
     if (in.pattern)
     {
       const std::string file = FrameFileName(in.name, in.first + k);
+      if (!CheckInputFile(file, std::uint64_t(1) << 32, error))
+      {
+        return false;
+      }
       image = cv::imread(file, cv::IMREAD_UNCHANGED);
       if (image.empty())
       {

@@ -5,6 +5,7 @@
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricCompositor.h"
 #include "vtkCatadioptricEnvironmentSource.h"
+#include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricLighting.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricOccluders.h"
@@ -31,7 +32,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -396,6 +400,22 @@ TEST(BadInput, DegenerateNormalsTakeTheMeshsOwn)
     distinct += out[0]->GetValue(i) != out[0]->GetValue(i % 4);
   }
   EXPECT_GT(distinct, 0); // shaded, not one flat colour
+}
+
+// Image inputs that are not files (a FIFO nobody writes, a device that never ends) are refused at
+// once: the FIFO blocked the reader, /dev/zero was read without end.
+TEST(BadInput, ImagesThatAreNotFilesAreRefused)
+{
+  const std::string fifo = std::string(CATAR_TEST_OUTPUT_DIR) + "/bad-input-fifo.png";
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& path : { fifo, std::string("/dev/zero"), std::string("/tmp") })
+  {
+    std::string error;
+    EXPECT_EQ(vtkCatadioptricImageSupport::ReadImageFile(path, error), nullptr) << path;
+    EXPECT_TRUE(Contains(error, "is not a regular file")) << error;
+  }
+  std::remove(fifo.c_str());
 }
 
 TEST(BadInput, FailedWritesFail)

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -488,4 +490,18 @@ TEST(PoseProgram, Errors)
   run = RunProgram("--help");
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("CALIBRATION"), std::string::npos) << run.output;
+
+  // Points from a device that never ends or a FIFO nobody writes: refused at once (it read an
+  // unbounded line from /dev/zero, and blocked on the FIFO). `timeout` ends a hang as a failure.
+  const std::string fifo = Temp("points.fifo");
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& input : { std::string("/dev/zero"), fifo })
+  {
+    const ProgramRun refused = catar_test::RunProgram("timeout",
+      "20 '" + std::string(CATAR_POSE_PROGRAM) + "' '" + calibration + "' '" + input + "'");
+    EXPECT_EQ(refused.status, 1) << input << ": " << refused.output;
+    EXPECT_NE(refused.output.find("is not a regular file"), std::string::npos) << refused.output;
+  }
+  std::remove(fifo.c_str());
 }
