@@ -257,6 +257,8 @@ private:
   double Bend(VH a, VH b);
   /// Computes the missing bends of the given pairs on several threads.
   void Prefetch(const std::vector<std::pair<VH, VH>>& pairs);
+  /// Prefetch for every edge of the mesh.
+  void PrefetchEdges();
   /// How close an edge between the two points is to its limits: the larger of length /
   /// maxEdgeLength and, when visible, bend / tolerance. An edge is acceptable when <= 1.
   double Ratio(double length, double bend) const
@@ -402,7 +404,7 @@ double Remesher::ReplacementDeviation(
     std::max(OneSidedDistance(original, replacement), OneSidedDistance(replacement, original));
 }
 
-double Remesher::EstimateTriangles()
+void Remesher::PrefetchEdges()
 {
   std::vector<std::pair<VH, VH>> pairs;
   pairs.reserve(this->Mesh.n_edges());
@@ -412,6 +414,11 @@ double Remesher::EstimateTriangles()
     pairs.emplace_back(this->Mesh.from_vertex_handle(h), this->Mesh.to_vertex_handle(h));
   }
   this->Prefetch(pairs);
+}
+
+double Remesher::EstimateTriangles()
+{
+  this->PrefetchEdges();
   double total = 0.0;
   for (FH f : this->Mesh.faces())
   {
@@ -606,14 +613,7 @@ std::size_t Remesher::Refine(bool& budgetSpent)
   std::size_t splits = 0;
   for (;;)
   {
-    std::vector<std::pair<VH, VH>> pairs;
-    pairs.reserve(this->Mesh.n_edges());
-    for (EH e : this->Mesh.edges())
-    {
-      const HH h = this->Mesh.halfedge_handle(e, 0);
-      pairs.emplace_back(this->Mesh.from_vertex_handle(h), this->Mesh.to_vertex_handle(h));
-    }
-    this->Prefetch(pairs);
+    this->PrefetchEdges();
     std::vector<std::pair<double, EH>> pending;
     for (EH e : this->Mesh.edges())
     {

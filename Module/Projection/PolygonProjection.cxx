@@ -15,15 +15,6 @@ namespace
 constexpr std::int64_t kGrain = 512;
 // How many polygons ahead the loop asks for its vertices' records.
 constexpr std::int64_t kPrefetchCells = 8;
-
-inline void Prefetch(const void* p)
-{
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
 } // namespace
 
 // Polygons whose centroid is still to be projected.
@@ -83,7 +74,7 @@ void PolygonProjection::ProjectRange(const PolygonsView<Index>& polygons,
       // The vertices of a cell a few ahead: their cache misses overlap this cell's work.
       for (Index k = off[c + kPrefetchCells]; k < off[c + kPrefetchCells + 1]; ++k)
       {
-        Prefetch(vertices + conn[k]);
+        parallel::Prefetch(vertices + conn[k]);
       }
     }
     const Index* ids = conn + off[c];
