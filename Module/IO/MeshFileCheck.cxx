@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -566,7 +567,9 @@ bool CheckObjFile(const std::string& path, std::string& error)
         char* end = nullptr;
         const long long id = std::strtoll(part.c_str(), &end, 10);
         const bool isNumber = !part.empty() && end && *end == '\0';
-        const bool valid = isNumber && id != 0 && (id > 0 ? id <= total[k] : -id <= sofar[k]);
+        // LLONG_MIN (what strtoll gives for any smaller number) cannot be negated: out of range.
+        const bool valid =
+          isNumber && id != 0 && id != LLONG_MIN && (id > 0 ? id <= total[k] : -id <= sofar[k]);
         if (!valid)
         {
           static const char* kinds[] = { "vertex", "texture coordinate", "normal" };
