@@ -35,7 +35,7 @@ std::string SceneText(
   const std::string& mesh, int w, int h, const std::string& shading, bool shadows)
 {
   std::ostringstream s;
-  s << "%YAML:1.0\n---\n"
+  s << "---\n"
     << "camera:\n"
     << "  image_width: 1328\n  image_height: 1048\n"
     << "  camera_matrix: [ 1000.0, 0.0, 663.5, 0.0, 1000.0, 523.5, 0.0, 0.0, 1.0 ]\n"

@@ -33,7 +33,7 @@ def scene_text(mesh, shadows):
                    "translate: [ 0.0, -0.25, 0.86 ], color: [ 0.9, 0.5, 0.2 ] }\n")
     objects += ("  - { type: plane, size: [ 0.4, 0.4 ], resolution: 80, translate: [ 0.0, -0.25, 0.8 ], "
                 "color: [ 0.8, 0.8, 0.8 ] }\n")
-    return ("%%YAML:1.0\n---\n%soutput: { width: 664, height: 524 }\n"
+    return ("---\n%soutput: { width: 664, height: 524 }\n"
             "background: { type: environment, samples: 1 }\n"
             "lighting:\n  shading: gouraud\n  shadows: %d\n  global_ambient: [ 0.3, 0.3, 0.3 ]\n"
             "  lights:\n    - { type: spot, position: [ 0.25, 0.0, 1.25 ], focal_point: [ 0.0, -0.25, 0.8 ], "

@@ -40,7 +40,7 @@ def scene_text(mesh, width, height, shadows):
     lights = "".join(
         "    - { type: spot, position: [ 0.0, 0.0, 1.3 ], focal_point: [ 0.0, -0.25, 0.9 ], "
         "cone_angle: 30, exponent: 2, color: [ %g, %g, %g ] }\n" % c for c in COLORS)
-    return ("%%YAML:1.0\n---\n%soutput: { width: %d, height: %d }\n"
+    return ("---\n%soutput: { width: %d, height: %d }\n"
             "background: { type: environment, samples: 1 }\n"
             "lighting:\n  shading: gouraud\n  shadows: %d\n  global_ambient: [ 0.15, 0.15, 0.15 ]\n"
             "  lights:\n%sobjects:\n%s" % (CAMERA, width, height, 1 if shadows else 0, lights, obj))

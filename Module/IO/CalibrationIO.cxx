@@ -340,7 +340,15 @@ std::string CalibrationToString(const CameraModel& model, bool json)
     cv::FileStorage::WRITE | cv::FileStorage::MEMORY |
       (json ? cv::FileStorage::FORMAT_JSON : cv::FileStorage::FORMAT_YAML));
   WriteStorage(out, model);
-  return out.releaseAndGetString();
+  std::string text = out.releaseAndGetString();
+  // OpenCV writes "%YAML:1.0", which is not a YAML directive: standard parsers (PyYAML, ruamel,
+  // yaml-cpp) refuse it. "%YAML 1.1" is the standard form, and OpenCV reads it too.
+  const std::string opencvHeader = "%YAML:1.0";
+  if (!json && text.compare(0, opencvHeader.size(), opencvHeader) == 0)
+  {
+    text.replace(0, opencvHeader.size(), "%YAML 1.1");
+  }
+  return text;
 }
 const CameraModel& DemoCamera()
 {

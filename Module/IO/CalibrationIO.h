@@ -1,5 +1,5 @@
 // CatadioptricAR Core: calibration files (YAML or JSON, read with yaml-cpp; written as OpenCV
-// FileStorage writes them, so OpenCV reads them too).
+// FileStorage writes them, so OpenCV reads them too, but with the standard `%YAML 1.1` directive).
 //
 // The format (Documentation/opencv-calibration.md): image_width, image_height, camera_matrix (3x3),
 // distortion_coefficients (k1 k2 p1 p2 [k3]), mirror {type: sphere, center [x y z] in the camera

@@ -77,6 +77,26 @@ TEST(CalibrationIO, RoundTripYamlAndJson)
   ExpectSame(m, back);
 }
 
+// A written YAML calibration starts with the standard directive "%YAML 1.1" (OpenCV's own
+// "%YAML:1.0" is refused by standard YAML parsers), and OpenCV's FileStorage still reads it.
+TEST(CalibrationIO, WrittenYamlIsStandardAndOpenCVReadsIt)
+{
+  const CameraModel m = Sample();
+  const std::string text = CalibrationToString(m);
+  ASSERT_EQ(text.rfind("%YAML 1.1\n", 0), 0u) << text.substr(0, 40);
+  EXPECT_EQ(text.find("%YAML:"), std::string::npos);
+  cv::FileStorage in(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ASSERT_TRUE(in.isOpened());
+  EXPECT_EQ(static_cast<int>(in["image_width"]), m.intrinsics.width);
+  EXPECT_EQ(static_cast<int>(in["image_height"]), m.intrinsics.height);
+  cv::Mat k;
+  in["camera_matrix"] >> k;
+  ASSERT_EQ(k.rows, 3);
+  ASSERT_EQ(k.cols, 3);
+  EXPECT_DOUBLE_EQ(k.at<double>(0, 0), m.intrinsics.fx);
+  EXPECT_DOUBLE_EQ(k.at<double>(1, 2), m.intrinsics.cy);
+}
+
 TEST(CalibrationIO, PlainSequencesAndOptionalKeys)
 {
   const std::string text = R"({

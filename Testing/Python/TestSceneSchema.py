@@ -1,5 +1,7 @@
 """Every shipped scene (Data/scenes) and the built-in demo satisfy Documentation/scene.schema.json;
-scenes the reader refuses for a wrong key, type or value are refused by the schema too.
+scenes the reader refuses for a wrong key, type or value are refused by the schema too. Scenes and
+calibrations, shipped and written, are standard YAML (PyYAML reads them; OpenCV's `%YAML:1.0`
+first line is not standard).
 
 Usage: TestSceneSchema.py SOURCE_DIR RENDER_PROGRAM"""
 import glob
@@ -7,6 +9,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 
 import jsonschema
 import yaml
@@ -18,12 +21,17 @@ jsonschema.Draft7Validator.check_schema(schema)
 validator = jsonschema.Draft7Validator(schema)
 
 
+class PlainLoader(yaml.SafeLoader):
+    """PyYAML's safe loader, plus OpenCV's `!!opencv-matrix` tag (a map: rows, cols, dt, data)."""
+
+
+PlainLoader.add_constructor("tag:yaml.org,2002:opencv-matrix",
+                            lambda loader, node: loader.construct_mapping(node, deep=True))
+
+
 def load(text):
-    # OpenCV's "%YAML:1.0" first line (optional in scene files) is not YAML 1.1's directive.
-    lines = text.splitlines()
-    if lines and lines[0].startswith("%YAML"):
-        lines = lines[1:]
-    return yaml.safe_load("\n".join(lines))
+    # Standard YAML, as any parser reads it: OpenCV's "%YAML:1.0" first line is not accepted.
+    return yaml.load(text, Loader=PlainLoader)
 
 
 passed = failed = 0
@@ -55,6 +63,23 @@ for name, text in bad.items():
     else:
         failed += 1
         print(f"FAIL accepted: {name}")
+
+# Shipped calibrations and a calibration the project writes are standard YAML too.
+calibrations = sorted(glob.glob(os.path.join(source, "Data", "calibration", "*.yaml")))
+assert calibrations, "no calibration in Data/calibration"
+with tempfile.TemporaryDirectory() as folder:
+    import catadioptricar as car
+    written = os.path.join(folder, "written-camera.yaml")
+    assert car.vtkCatadioptricCamera().Save(written), written
+    for path in calibrations + [written]:
+        try:
+            camera = load(open(path).read())
+            assert camera["camera_matrix"]["rows"] == 3 and camera["image_width"] > 0, camera
+            passed += 1
+            print(f"ok   plain YAML: {os.path.basename(path)}")
+        except Exception as e:  # noqa: BLE001 - any failure to read is the failure reported
+            failed += 1
+            print(f"FAIL {os.path.basename(path)}: {e}")
 
 print(f"scene schema: {passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)
