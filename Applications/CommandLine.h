@@ -1,19 +1,90 @@
-// The command-line programs' shared parsing (CLI11): --help and usage errors the same way in each.
+// The command-line programs' shared parsing (CLI11): --help, --version, --threads and usage errors
+// the same way in each, with a suggestion for a mistyped option.
 #ifndef catarCommandLine_h
 #define catarCommandLine_h
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace catar
 {
+namespace command_line
+{
+/// Levenshtein distance between a and b (options are short: quadratic is fine).
+inline std::size_t EditDistance(const std::string& a, const std::string& b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+  {
+    row[j] = j;
+  }
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      const std::size_t up = row[j];
+      row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1]) });
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// The option of app closest to `given` ("--tolerence", "--tolerence=3"), or "" when none is
+/// close: at most 2 edits, and fewer than a third of the name's letters.
+inline std::string ClosestOption(const CLI::App& app, std::string given)
+{
+  given = given.substr(0, given.find('='));
+  std::string best;
+  std::size_t bestDistance = 3;
+  for (const CLI::Option* option : app.get_options())
+  {
+    std::vector<std::string> names;
+    for (const std::string& name : option->get_lnames())
+    {
+      names.push_back("--" + name);
+    }
+    for (const std::string& name : option->get_snames())
+    {
+      names.push_back("-" + name);
+    }
+    for (const std::string& name : names)
+    {
+      const std::size_t d = EditDistance(given, name);
+      if (d < bestDistance && 3 * d < name.size())
+      {
+        bestDistance = d;
+        best = name;
+      }
+    }
+  }
+  return best;
+}
+} // namespace command_line
+
+/// Adds --threads N (1 to 1024): the number of threads of the parallel loops (the default: one a
+/// core). The program applies it after parsing.
+inline CLI::Option* AddThreadsOption(CLI::App& app, int& threads)
+{
+  return app
+    .add_option("--threads", threads, "threads of the parallel loops (default: one a core)")
+    ->type_name("N")
+    ->check(CLI::Range(1, 1024));
+}
+
 /// Parses argv into app, which gets a --version flag ("PROGRAM VERSION"). Returns -1 to go on;
 /// otherwise the exit status to return: 0 after printing the help (-h, --help) or the version,
 /// 2 after a usage error, which is printed once on standard error as
-/// "PROGRAM: what (run with --help for usage)". Options take their value as --option value or
-/// --option=value. Nothing is coloured.
+/// "PROGRAM: what (run with --help for usage)", with "did you mean --x?" when an unknown option is
+/// close to one of app's. Options take their value as --option value or --option=value. Nothing
+/// is coloured.
 inline int ParseCommandLine(CLI::App& app, const char* program, int argc, char** argv)
 {
   app.set_version_flag("--version", std::string(program) + " " + CATAR_VERSION);
@@ -33,7 +104,21 @@ inline int ParseCommandLine(CLI::App& app, const char* program, int argc, char**
   }
   catch (const CLI::ParseError& e)
   {
-    std::fprintf(stderr, "%s: %s (run with --help for usage)\n", program, e.what());
+    std::string suggestion;
+    for (const std::string& extra : app.remaining())
+    {
+      if (extra.size() > 1 && extra[0] == '-')
+      {
+        const std::string close = command_line::ClosestOption(app, extra);
+        if (!close.empty())
+        {
+          suggestion = "; did you mean " + close + "?";
+          break;
+        }
+      }
+    }
+    std::fprintf(
+      stderr, "%s: %s%s (run with --help for usage)\n", program, e.what(), suggestion.c_str());
     return 2;
   }
   return -1;

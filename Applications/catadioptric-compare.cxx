@@ -3,13 +3,16 @@
 //
 //   catadioptric-compare A.png B.png [--background R,G,B[,A]] [--background-image BG.png]
 //                        [--tolerance T] [--silhouette-psnr] [--csv FILE] [--diff FILE]
+//                        [--threads N] [--version]
 //
 // Exit status: 0 on success, 2 on a usage error, 1 when an image cannot be read or the two images
 // cannot be compared (different sizes).
+#include "CommandLine.h"
 #include "Csv.h"
 #include "FileOutput.h"
 #include "ImageMetrics.h"
 #include "RunMain.h"
+#include "Threads.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -30,22 +33,7 @@
 
 namespace
 {
-void Usage(FILE* out)
-{
-  std::fprintf(out,
-    "usage: catadioptric-compare A.png B.png [--background R,G,B[,A]] [--background-image BG.png]\n"
-    "                            [--tolerance T] [--silhouette-psnr] [--csv FILE] [--diff FILE]\n"
-    "\n"
-    "Compares two renderings of the same scene and prints one metric per line (name value):\n"
-    "silhouette IoU, mean and max (Hausdorff) boundary distance in pixels, PSNR of RGB in dB and\n"
-    "SSIM of the luminance (see Documentation/accuracy-metrics.md). A pixel is part of the object "
-    "when\n"
-    "it differs from the background (--background, default 0,0,0,255, or the pixel of\n"
-    "--background-image) by more than T levels (default 0) in some channel of RGBA.\n"
-    "--silhouette-psnr computes the PSNR over the union of the silhouettes only. --csv FILE\n"
-    "writes a header and one row; --diff FILE writes |A - B| x 4 as a PNG.\n"
-    "Exit status: 0 success, 1 unreadable or incomparable images, 2 usage error.\n");
-}
+constexpr const char* kProgram = "catadioptric-compare";
 
 // Reads an 8- or 16-bit grey, BGR or BGRA image and converts it to RGBA8.
 bool ReadRgba(const std::string& path, cv::Mat& rgba, std::string& error)
@@ -155,74 +143,54 @@ namespace
 {
 int Run(int argc, char* argv[])
 {
+  CLI::App app("Compares two renderings of the same scene and prints one metric per line (name "
+               "value): silhouette IoU, mean and max (Hausdorff) boundary distance in pixels, PSNR "
+               "of RGB in dB and SSIM of the luminance (Documentation/accuracy-metrics.md). A "
+               "pixel is part of the object when it differs from the background (--background, "
+               "or the pixel of --background-image) by more than T levels in some channel of "
+               "RGBA.",
+    kProgram);
+  app.footer("Exit status: 0 success, 1 unreadable or incomparable images, 2 usage error.");
   std::vector<std::string> inputs;
   catar::CompareOptions options;
   std::string backgroundImageName;
   std::string csvName;
   std::string diffName;
-  for (int i = 1; i < argc; ++i)
+  std::string backgroundText;
+  inputs.resize(2);
+  app.add_option("A", inputs[0], "an image (8- or 16-bit grey, RGB or RGBA)")->required();
+  app.add_option("B", inputs[1], "the image to compare with A, of the same size")->required();
+  app.add_option("--background", backgroundText, "the background colour (default 0,0,0,255)")
+    ->type_name("R,G,B[,A]")
+    ->check(CLI::Validator(
+      [](std::string& text) {
+        std::array<std::uint8_t, 4> colour{};
+        return ParseColour(text, colour) ? std::string()
+                                         : std::string("needs R,G,B or R,G,B,A (0..255)");
+      },
+      ""));
+  app.add_option("--background-image", backgroundImageName,
+    "the background, pixel by pixel (an image of the same size)");
+  app
+    .add_option("--tolerance", options.colorTolerance,
+      "levels a channel may differ from the background and stay background (default 0)")
+    ->type_name("T")
+    ->check(CLI::Range(0, 255));
+  app.add_flag("--silhouette-psnr", options.psnrOverSilhouette,
+    "the PSNR over the union of the silhouettes only");
+  app.add_option("--csv", csvName, "also write a header and one row of the metrics");
+  app.add_option("--diff", diffName, "also write |A - B| x 4 as an image (PNG, ...)");
+  int threads = 0;
+  catar::AddThreadsOption(app, threads);
+  const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
+  if (parsed >= 0)
   {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "-h" || arg == "--help")
-    {
-      Usage(stdout);
-      return 0;
-    }
-    if (arg == "--background" && hasValue)
-    {
-      if (!ParseColour(argv[++i], options.background))
-      {
-        std::fprintf(
-          stderr, "catadioptric-compare: --background needs R,G,B or R,G,B,A (0..255)\n");
-        return 2;
-      }
-    }
-    else if (arg == "--background-image" && hasValue)
-    {
-      backgroundImageName = argv[++i];
-    }
-    else if (arg == "--tolerance" && hasValue)
-    {
-      char* end = nullptr;
-      errno = 0;
-      const long t = std::strtol(argv[++i], &end, 10);
-      if (!end || *end != '\0' || end == argv[i] || errno != 0 || t < 0 || t > 255)
-      {
-        std::fprintf(stderr, "catadioptric-compare: --tolerance needs an integer in 0..255\n");
-        return 2;
-      }
-      options.colorTolerance = static_cast<int>(t);
-    }
-    else if (arg == "--silhouette-psnr")
-    {
-      options.psnrOverSilhouette = true;
-    }
-    else if (arg == "--csv" && hasValue)
-    {
-      csvName = argv[++i];
-    }
-    else if (arg == "--diff" && hasValue)
-    {
-      diffName = argv[++i];
-    }
-    else if (!arg.empty() && arg[0] == '-' && arg != "-")
-    {
-      std::fprintf(
-        stderr, "catadioptric-compare: unknown or incomplete option '%s'\n\n", arg.c_str());
-      Usage(stderr);
-      return 2;
-    }
-    else
-    {
-      inputs.push_back(arg);
-    }
+    return parsed;
   }
-  if (inputs.size() != 2)
+  catar::UseThreads(threads);
+  if (!backgroundText.empty())
   {
-    std::fprintf(stderr, "catadioptric-compare: two images expected, %zu given\n\n", inputs.size());
-    Usage(stderr);
-    return 2;
+    ParseColour(backgroundText, options.background);
   }
 
   cv::Mat a, b, background;
@@ -230,7 +198,7 @@ int Run(int argc, char* argv[])
   if (!ReadRgba(inputs[0], a, error) || !ReadRgba(inputs[1], b, error) ||
     (!backgroundImageName.empty() && !ReadRgba(backgroundImageName, background, error)))
   {
-    std::fprintf(stderr, "catadioptric-compare: %s\n", error.c_str());
+    std::fprintf(stderr, "%s: %s\n", kProgram, error.c_str());
     return 1;
   }
   if (!background.empty())
@@ -244,7 +212,7 @@ int Run(int argc, char* argv[])
   const catar::ImageComparison r = catar::CompareImages(inputA, inputB, options);
   if (!r.ok())
   {
-    std::fprintf(stderr, "catadioptric-compare: %s\n", r.error.c_str());
+    std::fprintf(stderr, "%s: %s\n", kProgram, r.error.c_str());
     return 1;
   }
 
@@ -281,7 +249,7 @@ int Run(int argc, char* argv[])
     std::string error;
     if (!catar::WriteWholeFile(csvName, csv.str(), error))
     {
-      std::fprintf(stderr, "catadioptric-compare: cannot write the CSV: %s\n", error.c_str());
+      std::fprintf(stderr, "%s: cannot write the CSV: %s\n", kProgram, error.c_str());
       return 1;
     }
   }

@@ -11,6 +11,7 @@
 
 #include "CommandLine.h"
 #include "RunMain.h"
+#include "Threads.h"
 
 #include <cerrno>
 #include <cmath>
@@ -193,11 +194,14 @@ int Run(int argc, char* argv[])
     ->type_name("PX")
     ->check(positive);
   app.add_option("--seed", options.seed, "RANSAC seed (default 0)")->type_name("N");
+  int threads = 0;
+  catar::AddThreadsOption(app, threads);
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
   {
     return parsed;
   }
+  catar::UseThreads(threads);
 
   catar::CameraModel camera;
   std::string error;

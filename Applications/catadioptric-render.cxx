@@ -20,6 +20,7 @@
 #include "ProgramOutput.h"
 #include "RunMain.h"
 #include "SceneDescription.h"
+#include "Threads.h"
 #include "VideoIO.h"
 #include "vtkPointData.h"
 #include "vtkTypeInt64Array.h"
@@ -632,6 +633,8 @@ int Run(int argc, char* argv[])
   app.add_flag(
     "--json", Json, "print the summary (sizes, counts, the time of each stage) as one JSON object");
   app.add_flag("--print-demo-scene", printDemo, "write the demo scene's YAML to standard output");
+  int threads = 0;
+  catar::AddThreadsOption(app, threads);
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
   {
@@ -703,11 +706,12 @@ int Run(int argc, char* argv[])
       "%s: --depth writes a 32-bit float .exr or .tif (run with --help for usage)\n", kProgram);
     return 2;
   }
-  // Parallel loops: STDThread unless the environment chose a backend.
-  if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
+  // Parallel loops: STDThread unless the environment chose a backend (--threads chooses it too).
+  if (threads > 0 || !std::getenv("VTK_SMP_BACKEND_IN_USE"))
   {
-    vtkCatadioptricParallel::EnableThreads();
+    vtkCatadioptricParallel::EnableThreads(threads);
   }
+  catar::UseThreads(threads);
 
   vtkNew<vtkCatadioptricSceneRenderer> renderer;
   WorkProgress workProgress;
