@@ -79,7 +79,8 @@ inline CLI::Option* AddThreadsOption(CLI::App& app, int& threads)
     ->check(CLI::Range(1, 1024));
 }
 
-/// Parses argv into app, which gets a --version flag ("PROGRAM VERSION"). Returns -1 to go on;
+/// Parses argv into app, which gets a --version flag ("PROGRAM VERSION") and a footer line that
+/// says where the documentation is installed. Returns -1 to go on;
 /// otherwise the exit status to return: 0 after printing the help (-h, --help) or the version,
 /// 2 after a usage error, which is printed once on standard error as
 /// "PROGRAM: what (run with --help for usage)", with "did you mean --x?" when an unknown option is
@@ -88,6 +89,12 @@ inline CLI::Option* AddThreadsOption(CLI::App& app, int& threads)
 inline int ParseCommandLine(CLI::App& app, const char* program, int argc, char** argv)
 {
   app.set_version_flag("--version", std::string(program) + " " + CATAR_VERSION);
+  // Where the documents named in the help are once installed, and the manual page.
+  const std::string footer = app.get_footer();
+  app.footer(footer + (footer.empty() ? "" : "\n\n") +
+    "Documentation: the source tree's Documentation/NAME.md is installed as " CATAR_DOC_DIR
+    "/NAME.md; the manual page: man " +
+    program + ".");
   try
   {
     app.parse(argc, argv);

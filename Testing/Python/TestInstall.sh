@@ -51,9 +51,32 @@ cmake --build "$prefix/downstream" >> "$prefix/downstream.log" ||
   { cat "$prefix/downstream.log"; exit 1; }
 "$prefix/downstream/downstream" "$prefix/empty"
 test -s "$prefix/empty/downstream.png"
-# The licence and citation file.
-test -f "$prefix/share/doc/CatadioptricAR/LICENSE"
-test -f "$prefix/share/doc/CatadioptricAR/CITATION.cff"
+# The licence and citation file, the README, the changelog and the documents.
+docs="$prefix/share/doc/CatadioptricAR"
+for f in LICENSE CITATION.cff README.md CHANGELOG.md render-a-scene.md scene.schema.json \
+  images/demo.png; do
+  test -f "$docs/$f" || { echo "not installed: $docs/$f"; exit 1; }
+done
+# Every document a program's --help names is installed where its footer says, and every program
+# has a manual page that lists its options.
+for program in catadioptric-render catadioptric-compare catadioptric-pose \
+  catadioptric-mirror-outline; do
+  help=$("$prefix/bin/$program" --help)
+  grep -q "Documentation: .* installed as .*/share/doc/CatadioptricAR/NAME.md" <<< "$help" ||
+    { echo "$program --help does not say where the documents are"; exit 1; }
+  for named in $(grep -o 'Documentation/[a-z-]*\.md' <<< "$help" | sort -u); do
+    test -f "$docs/${named#Documentation/}" ||
+      { echo "$program --help names $named, not installed in $docs"; exit 1; }
+  done
+  page="$prefix/share/man/man1/$program.1"
+  test -f "$page" || { echo "no manual page $page"; exit 1; }
+  grep -q '^\.TH' "$page" && grep -q 'threads' "$page" ||
+    { echo "$page lacks a title or --threads"; exit 1; }
+  if command -v man > /dev/null; then
+    MANWIDTH=100 man -l "$page" 2> /dev/null | grep -q -- "--version" ||
+      { echo "man cannot render $page"; exit 1; }
+  fi
+done
 plugin=$(find "$prefix" -name CatadioptricAR.so | head -n 1)
 test -n "$plugin"
 if [[ -n "$pvpython" ]]; then
