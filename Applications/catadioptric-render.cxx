@@ -721,7 +721,16 @@ int Run(int argc, char* argv[])
   renderer->AddObserver(vtkCommand::ProgressEvent, onProgress);
   // A scene that is not where it was named is looked for on the data search path
   // (CATAR_DATA_PATH, then the installed data): `catadioptric-render scenes/two-objects.yaml`.
-  scene = scene.empty() ? scene : catar::FindDataFile("", scene);
+  if (!scene.empty())
+  {
+    std::string notFound;
+    scene = catar::FindDataFile("", scene, &notFound);
+    if (!notFound.empty())
+    {
+      catar::PrintError(kProgram, notFound);
+      return 1;
+    }
+  }
   renderer->SetSceneFileName(scene.empty() ? nullptr : scene.c_str());
   renderer->SetRemeshTargetArea(targetArea);
   renderer->SetRemeshPixelTolerance(pixelTolerance);

@@ -10,6 +10,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -30,9 +31,21 @@ std::string Join(const std::string& dir, const std::string& path)
   return dir.empty() ? path : dir + "/" + path;
 }
 
-std::string Resolve(const std::string& baseDir, const std::string& path)
+// A file named in a scene, found (FindDataFile); a URL, or a name found nowhere, is an error that
+// names `key` and the folders looked in. A frame pattern (with '%') is left to its reader.
+std::string Resolve(const std::string& baseDir, const std::string& path, const char* key)
 {
-  return FindDataFile(baseDir, path);
+  if (path.empty())
+  {
+    return path;
+  }
+  std::string error;
+  const std::string found = FindDataFile(baseDir, path, &error);
+  if (!error.empty() && path.find('%') == std::string::npos)
+  {
+    throw fs::ParseError(std::string(key) + ": " + error);
+  }
+  return found;
 }
 
 std::string DirName(const std::string& path)
@@ -245,7 +258,7 @@ SceneObject ReadObject(
       {
         throw fs::ParseError("type 'mesh' needs 'file'");
       }
-      o.file = Resolve(baseDir, o.file);
+      o.file = Resolve(baseDir, o.file, "file");
     }
     else if (o.type != "box" && o.type != "sphere" && o.type != "torus" && o.type != "cylinder" &&
       o.type != "plane" && o.type != "marker")
@@ -328,7 +341,7 @@ SceneObject ReadObject(
     o.texture = fs::String(node, "texture", "");
     if (!o.texture.empty() && o.texture != "checker")
     {
-      o.texture = Resolve(baseDir, o.texture);
+      o.texture = Resolve(baseDir, o.texture, "texture");
     }
     if (o.type == "marker")
     {
@@ -541,7 +554,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   const fs::Node cam = root["camera"];
   if (cam.isString())
   {
-    const std::string path = Resolve(baseDir, cam.text());
+    const std::string path = Resolve(baseDir, cam.text(), "camera");
     scene.calibrationFile = path;
     std::string error;
     if (!LoadCalibration(path, scene.camera, error))
@@ -703,7 +716,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
         "background: 'type' must be environment, panorama, color, image or video");
     }
     scene.background.color = ColorOr(bg, "color", scene.background.color);
-    scene.background.image = Resolve(baseDir, fs::String(bg, "image", ""));
+    scene.background.image = Resolve(baseDir, fs::String(bg, "image", ""), "background: image");
     if (scene.background.type == "image" && scene.background.image.empty())
     {
       throw fs::ParseError("background: type 'image' needs 'image'");
@@ -714,7 +727,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
       throw fs::ParseError("background: 'samples' must be an integer in [1, 8]");
     }
     scene.background.samples = static_cast<int>(s);
-    scene.background.panorama = Resolve(baseDir, fs::String(bg, "file", ""));
+    scene.background.panorama = Resolve(baseDir, fs::String(bg, "file", ""), "background: file");
     scene.background.rotation = fs::Number(bg, "rotation", scene.background.rotation);
     if (!std::isfinite(scene.background.rotation))
     {
@@ -753,7 +766,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     {
       throw fs::ParseError("'trajectory' must name a file");
     }
-    scene.trajectoryFile = Resolve(baseDir, trajectory.text());
+    scene.trajectoryFile = Resolve(baseDir, trajectory.text(), "trajectory");
     std::string error;
     if (!LoadTrajectory(scene.trajectoryFile, scene.trajectory, error))
     {
@@ -777,7 +790,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
       throw fs::ParseError("'markers' needs a background of type video or image (the frames "
                            "the markers are found in)");
     }
-    scene.markerBoardFile = Resolve(baseDir, markers.text());
+    scene.markerBoardFile = Resolve(baseDir, markers.text(), "markers");
   }
   const fs::Node sequence = root["sequence"];
   if (!sequence.empty() && !sequence.isNone())
@@ -1029,10 +1042,41 @@ std::string InstalledDataDir()
   return CATAR_INSTALLED_DATA_DIR;
 }
 
-std::string FindDataFile(const std::string& baseDir, const std::string& path)
+bool IsUrl(const std::string& name)
 {
+  // scheme "://" (RFC 3986: a letter, then letters, digits, '+', '-', '.').
+  const std::size_t colon = name.find("://");
+  if (colon == std::string::npos || colon == 0 ||
+    !std::isalpha(static_cast<unsigned char>(name[0])))
+  {
+    return false;
+  }
+  return std::all_of(name.begin(), name.begin() + static_cast<std::ptrdiff_t>(colon), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
+  });
+}
+
+std::string FindDataFile(const std::string& baseDir, const std::string& path, std::string* error)
+{
+  if (error)
+  {
+    error->clear();
+  }
+  if (IsUrl(path))
+  {
+    if (error)
+    {
+      *error =
+        "'" + path + "' is a URL; files are read from disk only: download it and name the file";
+    }
+    return path;
+  }
   if (path.empty() || path[0] == '/')
   {
+    if (error && !path.empty() && !Exists(path))
+    {
+      *error = "'" + path + "' not found";
+    }
     return path;
   }
   std::string local = Join(baseDir, path);
@@ -1040,12 +1084,31 @@ std::string FindDataFile(const std::string& baseDir, const std::string& path)
   {
     return local;
   }
-  for (const std::string& dir : DataSearchPath())
+  const std::vector<std::string> searchPath = DataSearchPath();
+  for (const std::string& dir : searchPath)
   {
     if (Exists(Join(dir, path)))
     {
       return Join(dir, path);
     }
+  }
+  if (error)
+  {
+    // Where it was looked for, in order, each folder said once.
+    std::string looked = "'" + (baseDir.empty() ? std::string(".") : baseDir) + "' (" +
+      (baseDir.empty() ? "the working folder" : "the scene's folder") + ")";
+    const char* env = std::getenv("CATAR_DATA_PATH");
+    for (std::size_t i = 0; i < searchPath.size(); ++i)
+    {
+      const bool installed = i + 1 == searchPath.size();
+      looked += ", '" + searchPath[i] + "' (" +
+        (installed ? "the installed data" : "CATAR_DATA_PATH") + ")";
+    }
+    if (!env || !*env)
+    {
+      looked += "; CATAR_DATA_PATH is not set";
+    }
+    *error = "'" + path + "' not found; looked in " + looked;
   }
   return local;
 }

@@ -216,8 +216,12 @@ std::vector<std::string> DataSearchPath();
 std::string InstalledDataDir();
 /// Where a file named in a scene is: an absolute name as it is; a relative one in `baseDir`
 /// (the scene's folder), else in the first folder of DataSearchPath() that has it. When none
-/// has it, `baseDir`/`path` (whose reader then says it is missing).
-std::string FindDataFile(const std::string& baseDir, const std::string& path);
+/// has it, `baseDir`/`path`, and `error` (when given) says "'path' not found; looked in ..." with
+/// every folder tried; a URL ("https://...") is not looked for, and `error` says so.
+std::string FindDataFile(
+  const std::string& baseDir, const std::string& path, std::string* error = nullptr);
+/// Whether `name` is a URL ("scheme://..."), which the project does not download.
+bool IsUrl(const std::string& name);
 
 /// Reads a scene file. Returns false and says why in `error` on failure.
 bool LoadScene(const std::string& path, SceneDescription& scene, std::string& error);

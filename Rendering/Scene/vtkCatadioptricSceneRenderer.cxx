@@ -361,10 +361,16 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   {
     scene = catar::DemoScene();
   }
-  else if (!catar::LoadScene(name, scene, in.Error))
+  else
   {
-    vtkErrorMacro(<< in.Error);
-    return false;
+    // A name not found as given is looked for on the data search path (CATAR_DATA_PATH, then the
+    // installed data), as every front end does; not found, the error names where it looked.
+    const std::string found = catar::FindDataFile("", name, &in.Error);
+    if (!in.Error.empty() || !catar::LoadScene(found, scene, in.Error))
+    {
+      vtkErrorMacro(<< in.Error);
+      return false;
+    }
   }
   catar::CameraModel model = scene.camera;
   if (scene.width > 0 && scene.height > 0 &&

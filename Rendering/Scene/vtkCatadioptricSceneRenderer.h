@@ -47,7 +47,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Scene file to read; when null or empty, the built-in demo scene is used.
+  /// Scene file to read; when null or empty, the built-in demo scene is used. A name not found
+  /// as given is looked for on the data search path (CATAR_DATA_PATH, then the installed data);
+  /// found nowhere, LoadScene fails with an error that names every folder it looked in.
   vtkSetStringMacro(SceneFileName);
   vtkGetStringMacro(SceneFileName);
   ///@}

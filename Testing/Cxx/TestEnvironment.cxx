@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <random>
 #include <vector>
 
@@ -386,13 +388,17 @@ TEST(EnvironmentScene, PanoramaBackgroundKeys)
 )";
   SceneDescription s;
   std::string error;
+  // The panorama must exist to be found (it is read only when rendering).
+  const std::string folder = ::testing::TempDir() + "/catar_panorama_keys";
+  ASSERT_EQ(std::system(("mkdir -p '" + folder + "/env'").c_str()), 0);
+  std::ofstream(folder + "/env/place.jpg") << "not read here";
   ASSERT_TRUE(ParseScene("%YAML:1.0\n---\n" + camera +
       "background: { type: panorama, file: env/place.jpg, rotation: -45, "
       "backdrop: [0.1, 0.2, 0.3], samples: 3 }\n",
-    "/data/scenes", s, error))
+    folder, s, error))
     << error;
   EXPECT_EQ(s.background.type, "panorama");
-  EXPECT_EQ(s.background.panorama, "/data/scenes/env/place.jpg");
+  EXPECT_EQ(s.background.panorama, folder + "/env/place.jpg");
   EXPECT_DOUBLE_EQ(s.background.rotation, -45.0);
   EXPECT_EQ(s.background.backdrop, Vec3(0.1, 0.2, 0.3));
   EXPECT_EQ(s.background.samples, 3);

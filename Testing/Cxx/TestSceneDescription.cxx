@@ -68,11 +68,12 @@ cull_back_faces: 1
 background: { type: color, color: [0.1, 0.2, 0.3] }
 objects:
   - { type: sphere, radius: 0.03, translate: [0.1, 0, 0], color: [1, 0, 0] }
-  - { file: meshes/bunny.ply, scale: 2 }
+  - { file: meshes/trefoil-knot.ply, scale: 2 }
 )";
   SceneDescription s;
   std::string error;
-  ASSERT_TRUE(ParseScene(text, "/data/scenes", s, error)) << error;
+  const std::string data = std::string(CATAR_SOURCE_DIR) + "/Data";
+  ASSERT_TRUE(ParseScene(text, data, s, error)) << error;
   EXPECT_EQ(s.solver, SolverType::Iterative);
   EXPECT_TRUE(s.cullBackFaces);
   EXPECT_EQ(s.background.type, "color");
@@ -81,7 +82,7 @@ objects:
   EXPECT_EQ(s.objects[0].type, "sphere");
   EXPECT_DOUBLE_EQ(s.objects[0].radius, 0.03);
   EXPECT_EQ(s.objects[1].type, "mesh");
-  EXPECT_EQ(s.objects[1].file, "/data/scenes/meshes/bunny.ply");
+  EXPECT_EQ(s.objects[1].file, data + "/meshes/trefoil-knot.ply");
   EXPECT_EQ(s.objects[1].scale, Vec3(2, 2, 2));
 }
 
@@ -283,8 +284,57 @@ TEST(SceneDescription, DataSearchPathOrder)
   ASSERT_TRUE(LoadScene(scene + "/s.yaml", s, error)) << error;
   ASSERT_EQ(s.objects.size(), 1u);
   EXPECT_EQ(s.objects[0].file, root + "/second/meshes/only-second.ply");
+
+  // Found nowhere: "not found" and every folder looked in, in order; the scene's key first.
+  std::string notFound;
+  FindDataFile(scene, "meshes/none.ply", &notFound);
+  const std::string expected = "'meshes/none.ply' not found; looked in '" + scene +
+    "' (the scene's folder), '" + root + "/first' (CATAR_DATA_PATH), '" + root +
+    "/second' (CATAR_DATA_PATH), '" + InstalledDataDir() + "' (the installed data)";
+  EXPECT_EQ(notFound, expected);
+  std::string found;
+  FindDataFile(scene, "meshes/both.ply", &found);
+  EXPECT_EQ(found, "");
+  std::ofstream(scene + "/missing.yaml")
+    << kCamera << "objects:\n  - { type: box }\n  - { type: mesh, file: meshes/none.ply }\n";
+  EXPECT_FALSE(LoadScene(scene + "/missing.yaml", s, error));
+  EXPECT_NE(error.find("objects[1]: file: " + expected), std::string::npos) << error;
+  for (const std::string key : { "texture", "trajectory" })
+  {
+    std::ofstream(scene + "/missing.yaml")
+      << kCamera
+      << (key == "texture" ? "objects:\n  - { type: box, texture: none.png }\n"
+                           : "trajectory: none.csv\n");
+    EXPECT_FALSE(LoadScene(scene + "/missing.yaml", s, error));
+    EXPECT_NE(error.find(key + ": 'none."), std::string::npos) << error;
+    EXPECT_NE(error.find("not found; looked in"), std::string::npos) << error;
+  }
   unsetenv("CATAR_DATA_PATH");
   EXPECT_EQ(DataSearchPath().size(), 1u);
+  FindDataFile(scene, "meshes/none.ply", &notFound);
+  EXPECT_NE(notFound.find("CATAR_DATA_PATH is not set"), std::string::npos) << notFound;
+}
+
+// A URL is not a relative path: it is refused by name, not looked for in the scene's folder.
+TEST(SceneDescription, UrlsAreRefused)
+{
+  for (const char* url : { "https://example.org/bunny.ply", "http://host/a.png",
+         "file:///tmp/a.ply", "s3://bucket/a.ply", "git+ssh://h/a.ply" })
+  {
+    EXPECT_TRUE(IsUrl(url)) << url;
+    std::string error;
+    EXPECT_EQ(FindDataFile("/tmp", url, &error), url);
+    EXPECT_NE(error.find("is a URL"), std::string::npos) << url << ": " << error;
+    SceneDescription s;
+    EXPECT_FALSE(
+      ParseScene(std::string(kCamera) + "objects:\n  - { type: mesh, file: '" + url + "' }\n",
+        "/tmp", s, error));
+    EXPECT_NE(error.find("file: '" + std::string(url) + "' is a URL"), std::string::npos) << error;
+  }
+  for (const char* name : { "a.ply", "meshes/x://y.ply", "1http://a", "://a", "c:/a.ply" })
+  {
+    EXPECT_FALSE(IsUrl(name)) << name;
+  }
 }
 
 TEST(SceneDescription, LightingAndMaterials)

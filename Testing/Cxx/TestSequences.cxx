@@ -534,6 +534,7 @@ TEST(Sequence, BadSequencesAreRefusedWithASentence)
     ExpectRefused(dir + "/scene.yaml", Scene(Pose(0, 0), "", "[ 70, 0, 20 ]", c.extra), c.expect);
   }
   std::string text = Scene(Pose(0, 0), "", "[ 70, 0, 20 ]");
+  Write(dir + "/bg.avi", ""); // named below; found, so that the key after it is checked
   const std::string bg = "background: { type: color, color: [ 0.1, 0.1, 0.1 ] }";
   const Case backgrounds[] = { { "background: { type: video }", "needs 'file'" },
     { "background: { type: video, file: none_%03d.png, fps: 5 }", "no frames" },

@@ -221,6 +221,33 @@ class PipelineTest(unittest.TestCase):
             self.assertIn("camera", renderer.GetLastError())
 
 
+    def test_render_uses_the_data_search_path(self):
+        # car.render() finds a scene by its data-path name as catadioptric-render does, and a
+        # name found nowhere is an error that says where it looked.
+        data = os.path.join(os.environ["CATAR_SOURCE_DIR"], "Data")
+        saved = os.environ.get("CATAR_DATA_PATH")
+        here = os.getcwd()
+        with tempfile.TemporaryDirectory() as d:
+            os.chdir(d)
+            try:
+                os.environ["CATAR_DATA_PATH"] = data
+                frame = car.render("scenes/two-objects.yaml")
+                self.assertEqual(frame.shape, (524, 664, 4))
+                with self.assertRaises(RuntimeError) as raised:
+                    car.render("scenes/no-such-scene.yaml")
+                message = str(raised.exception)
+                self.assertIn("'scenes/no-such-scene.yaml' not found; looked in", message)
+                self.assertIn("'%s' (CATAR_DATA_PATH)" % data, message)
+                with self.assertRaises(RuntimeError) as raised:
+                    car.render("https://example.org/scene.yaml")
+                self.assertIn("is a URL", str(raised.exception))
+            finally:
+                os.chdir(here)
+                if saved is None:
+                    os.environ.pop("CATAR_DATA_PATH", None)
+                else:
+                    os.environ["CATAR_DATA_PATH"] = saved
+
     def test_quadric_mirror_by_type_and_keys(self):
         # A hyperbolic mirror with the camera at its outer focus: set by type and keys, it
         # projects a point, and the ray of that pixel passes through the point.
