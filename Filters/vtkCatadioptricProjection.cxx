@@ -286,8 +286,9 @@ int vtkCatadioptricProjection::RequestData(
     return 0;
   }
   const catar::Projector projector(camera->GetModel());
+  // AUTOMATIC: the mirror's choice, resolved once (the batches below follow the choice).
   const catar::SolverType solver =
-    this->Solver == ITERATIVE ? catar::SolverType::Iterative : catar::SolverType::Quartic;
+    projector.GetMirror()->Resolve(static_cast<catar::SolverType>(this->Solver));
 
   output->ShallowCopy(input);
   camera->WriteToFieldData(output->GetFieldData());

@@ -39,6 +39,14 @@ static_assert(vtkCatadioptricCamera::VALID == static_cast<int>(catar::Projection
 
 namespace
 {
+// The `solver` number of ProjectWorldPoint(s): 0 quartic, 1 iterative, anything else automatic.
+catar::SolverType SolverFromNumber(int solver)
+{
+  return solver == 0 ? catar::SolverType::Quartic
+    : solver == 1    ? catar::SolverType::Iterative
+                     : catar::SolverType::Automatic;
+}
+
 // An integer-vector key that the executives copy from a filter's first input to its outputs
 // during REQUEST_INFORMATION (plain keys stay where they were set).
 class ImageSizeKey : public vtkInformationIntegerVectorKey
@@ -393,15 +401,15 @@ bool vtkCatadioptricCamera::Save(const char* fileName)
 int vtkCatadioptricCamera::ProjectWorldPoint(
   const double point[3], double pixel[2], double mirrorPoint[3])
 {
-  return this->ProjectWorldPoint(point, pixel, mirrorPoint, 0);
+  return this->ProjectWorldPoint(point, pixel, mirrorPoint, 2);
 }
 
 int vtkCatadioptricCamera::ProjectWorldPoint(
   const double point[3], double pixel[2], double mirrorPoint[3], int solver)
 {
   const catar::Projector proj(this->GetModel());
-  const catar::ProjectedPoint q = proj.ProjectWorld(catar::Vec3(point[0], point[1], point[2]),
-    solver == 1 ? catar::SolverType::Iterative : catar::SolverType::Quartic);
+  const catar::ProjectedPoint q =
+    proj.ProjectWorld(catar::Vec3(point[0], point[1], point[2]), SolverFromNumber(solver));
   pixel[0] = q.pixel.x();
   pixel[1] = q.pixel.y();
   std::copy(q.mirrorPoint.data(), q.mirrorPoint.data() + 3, mirrorPoint);
@@ -464,8 +472,7 @@ bool vtkCatadioptricCamera::ProjectWorldPoints(vtkDataArray* points, vtkDoubleAr
   statuses->SetNumberOfTuples(n);
   mirrorPoints->SetNumberOfComponents(3);
   mirrorPoints->SetNumberOfTuples(n);
-  const catar::SolverType type =
-    solver == 1 ? catar::SolverType::Iterative : catar::SolverType::Quartic;
+  const catar::SolverType type = SolverFromNumber(solver);
   double* pixel = pixels->GetPointer(0);
   int* status = statuses->GetPointer(0);
   double* mirror = mirrorPoints->GetPointer(0);

@@ -155,7 +155,8 @@ public:
 
   ///@{
   /// Forward projection of a world point. Returns a status code; pixel and mirrorPoint (camera
-  /// frame) are set for VALID and OUTSIDE_IMAGE and zero otherwise. solver: 0 quartic, 1 iterative.
+  /// frame) are set for VALID and OUTSIDE_IMAGE and zero otherwise. solver: 0 quartic, 1
+  /// iterative, 2 automatic (the default: the faster where exact, catar::SolverType::Automatic).
   int ProjectWorldPoint(const double point[3], double pixel[2], double mirrorPoint[3]);
   int ProjectWorldPoint(const double point[3], double pixel[2], double mirrorPoint[3], int solver);
   ///@}
@@ -175,7 +176,7 @@ public:
   /// invalid camera. From Python, catadioptricar.project_points and back_project wrap them for
   /// numpy arrays.
   bool ProjectWorldPoints(vtkDataArray* points, vtkDoubleArray* pixels, vtkIntArray* statuses,
-    vtkDoubleArray* mirrorPoints, int solver = 0);
+    vtkDoubleArray* mirrorPoints, int solver = 2);
   bool BackProjectPixels(vtkDataArray* pixels, vtkDoubleArray* origins, vtkDoubleArray* directions,
     vtkIntArray* statuses);
   ///@}

@@ -43,8 +43,13 @@ inline bool HasProjection(ProjectionStatus s)
 /// Which algorithm finds the reflection point.
 enum class SolverType : int
 {
-  Quartic = 0,  ///< closed-form quartic (Ferrari) + Newton polish
-  Iterative = 1 ///< safeguarded Newton on the planar reflection law
+  Quartic = 0,   ///< closed-form quartic (Ferrari) + Newton polish
+  Iterative = 1, ///< safeguarded Newton on the planar reflection law
+  /// The default: the faster where it gives the same answer, which the mirror chooses
+  /// (Mirror::Resolve): Iterative for the sphere and most quadrics; Quartic for a quadric with
+  /// the camera on its axis, where a point may have several images (a concave part, a cone's
+  /// rim) and the quartic keeps the one of shortest path.
+  Automatic = 2
 };
 
 /// Result of a forward projection. Fields other than status are zero unless HasProjection(status).

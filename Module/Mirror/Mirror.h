@@ -36,6 +36,13 @@ public:
   virtual ProjectionStatus Reflect(
     const Vec3& point, SolverType solver, Vec3& mirrorPoint, const Vec3* guess = nullptr) const = 0;
 
+  /// The solver `solver` stands for: itself, or for Automatic the faster one that gives the same
+  /// answer on this mirror (Iterative unless an implementation says otherwise).
+  virtual SolverType Resolve(SolverType solver) const
+  {
+    return solver == SolverType::Automatic ? SolverType::Iterative : solver;
+  }
+
   /// How many points ReflectNear solves side by side (at most kMaxBatchSize).
   virtual int BatchSize() const { return 1; }
   static constexpr int kMaxBatchSize = 64;

@@ -1113,7 +1113,7 @@ ProjectionStatus QuadricSurface::Reflect(
       return ProjectionStatus::Valid;
     }
   }
-  if (this->Axial && solver == SolverType::Quartic && !guess)
+  if (this->Axial && this->Resolve(solver) == SolverType::Quartic && !guess)
   {
     ProjectionStatus status = ProjectionStatus::NoReflection;
     if (this->AxialReflect(P, mirrorPoint, status))

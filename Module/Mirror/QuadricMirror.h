@@ -88,6 +88,14 @@ public:
   /// false when it has no answer (not axial, P on the axis, no reflection). Reflect uses it for
   /// the quartic solver without a guess.
   bool IsAxial() const { return this->Axial; }
+  /// Automatic is Quartic for an axial placement (every image found, the shortest path kept),
+  /// else Iterative (both run the same Newton there).
+  SolverType Resolve(SolverType solver) const override
+  {
+    return solver != SolverType::Automatic ? solver
+      : this->Axial                        ? SolverType::Quartic
+                                           : SolverType::Iterative;
+  }
   bool AxialReflect(const Vec3& point, Vec3& mirrorPoint, ProjectionStatus& status) const;
 
 private:

@@ -267,7 +267,7 @@ ProjectionStatus SphereSurface::Reflect(
   const double hi = std::min(this->TanHalfAlphaA, uBeta);
   // Far-field guess t = beta / 2: tan(beta / 4) from tan(beta / 2).
   double start = std::isfinite(uBeta) ? uBeta / (1.0 + std::sqrt(1.0 + uBeta * uBeta)) : 1.0;
-  if (solver == SolverType::Quartic && !guess)
+  if (solver == SolverType::Quartic && !guess) // Automatic: Iterative, the same root
   {
     // The closed-form root, polished by the same safeguarded Newton (which converges in one or
     // two steps from it). Should rounding in Ferrari's method leave no root in the bracket, the

@@ -19,13 +19,13 @@ namespace catar
 /// the images of a and b. Returns -1 when the edge is not seen: an end or a sample has no
 /// projection (see HasProjection), or neither end lies inside the image. Never NaN.
 double EdgeBendPixels(const Projector& projector, const Vec3& aWorld, const Vec3& bWorld,
-  int samples = 1, SolverType solver = SolverType::Quartic);
+  int samples = 1, SolverType solver = SolverType::Automatic);
 
 /// Image scale at a world point, in pixels per world unit: the largest image displacement of
 /// the point moved by `step` along each world axis, divided by `step`. Returns -1 when the point
 /// is not seen (no valid projection, or a moved point has none). Never NaN.
 double ImageScale(const Projector& projector, const Vec3& pointWorld, double step,
-  SolverType solver = SolverType::Quartic);
+  SolverType solver = SolverType::Automatic);
 
 /// The bound on the geometric error that keeps coarsening a mesh within `tolerance` pixels in the
 /// image: the distance that moves the image by the tolerance where the object (its points) is

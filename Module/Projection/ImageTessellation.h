@@ -41,7 +41,7 @@ struct TessellationOptions
   int maxDepth = 12;
   /// The most triangles one input triangle may become.
   int maxPiecesPerTriangle = 65536;
-  SolverType solver = SolverType::Quartic;
+  SolverType solver = SolverType::Automatic;
 };
 
 /// A point the tessellation made: inside input triangle (a, b, c) (input point ids) at

@@ -95,7 +95,8 @@ ProjectedPoint Projector::ProjectCameraFrom(
     return out;
   }
   Vec3 r;
-  const ProjectionStatus s = this->MirrorModel->Reflect(p, solver, r, mirrorGuess);
+  const ProjectionStatus s =
+    this->MirrorModel->Reflect(p, this->MirrorModel->Resolve(solver), r, mirrorGuess);
   if (s != ProjectionStatus::Valid)
   {
     out.status = s;

@@ -614,7 +614,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     scene.width = static_cast<int>(w);
     scene.height = static_cast<int>(h);
   }
-  const std::string solver = fs::String(root, "solver", "quartic");
+  const std::string solver = fs::String(root, "solver", "auto");
   if (solver == "quartic")
   {
     scene.solver = SolverType::Quartic;
@@ -623,9 +623,13 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   {
     scene.solver = SolverType::Iterative;
   }
+  else if (solver == "auto")
+  {
+    scene.solver = SolverType::Automatic;
+  }
   else
   {
-    throw fs::ParseError("'solver' must be 'quartic' or 'iterative'");
+    throw fs::ParseError("'solver' must be 'auto', 'iterative' or 'quartic'");
   }
   scene.cullBackFaces = fs::Flag(root, "cull_back_faces", false);
   const fs::Node edges = root["edges"];

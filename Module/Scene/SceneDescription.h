@@ -161,7 +161,7 @@ struct SceneDescription
   std::string calibrationFile; ///< the calibration file `camera` names ("" when inline)
   int width = 0;               ///< output size; 0 = the calibration's
   int height = 0;
-  SolverType solver = SolverType::Quartic;
+  SolverType solver = SolverType::Automatic; ///< the faster where exact (SolverType)
   /// Key `visibility`: "painter" (the paper's painter order, default) or "depth" (a per-pixel
   /// depth buffer on the path length): vtkCatadioptricCompositor's Visibility.
   std::string visibility = "painter";

@@ -666,9 +666,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     proj->SetAdaptiveTolerance(this->AdaptiveTolerance > 0.0 ? this->AdaptiveTolerance
         : own >= 0.0                                         ? own
                                                              : scene.adaptiveTolerance);
-    proj->SetSolver(scene.solver == catar::SolverType::Iterative
-        ? vtkCatadioptricProjection::ITERATIVE
-        : vtkCatadioptricProjection::QUARTIC);
+    proj->SetSolver(static_cast<int>(scene.solver)); // the same numbers (vtkCatadioptricProjection)
     vtkAlgorithmOutput* last = proj->GetOutputPort();
     if (lit)
     {

@@ -4,6 +4,7 @@
 #include "Mirror.h"
 #include "Projector.h"
 #include "QuadricMirror.h"
+#include "SceneDescription.h"
 #include "SphereMirror.h"
 
 #include <Eigen/Geometry>
@@ -14,6 +15,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace catar;
@@ -240,6 +242,56 @@ TEST(QuadricMirror, AxialPlanarReductionAgreesWithNewton)
     EXPECT_GT(both, 0.95 * tried);
     EXPECT_LE(worst, 1e-12 * projector.GetMirror()->Viewpoint().norm());
   }
+}
+
+// The default solver, Automatic, is the faster one where it gives the same answer: Iterative for
+// the sphere and off-axis quadrics, Quartic (every image, the shortest path kept) for axial
+// quadrics; Projector's default gives exactly what the solver it stands for gives.
+TEST(QuadricMirror, AutomaticSolverIsTheFasterWhereExact)
+{
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> pixel(0.0, 799.0);
+  std::uniform_real_distribution<double> distance(0.01, 3.0);
+  std::vector<std::pair<std::string, MirrorDescription>> mirrors = { { "sphere",
+    SphereMirror{ Vec3(0.0, 0.0, 0.2), 0.05 } } };
+  for (const Case& c : Cases())
+  {
+    mirrors.emplace_back(c.name, c.mirror);
+  }
+  int axial = 0, offAxis = 0;
+  for (const auto& [name, mirror] : mirrors)
+  {
+    SCOPED_TRACE(name);
+    const Projector projector(Camera(mirror));
+    const auto* quadric = dynamic_cast<const detail::QuadricSurface*>(projector.GetMirror());
+    const SolverType expected =
+      quadric && quadric->IsAxial() ? SolverType::Quartic : SolverType::Iterative;
+    (expected == SolverType::Quartic ? axial : offAxis) += 1;
+    EXPECT_EQ(projector.GetMirror()->Resolve(SolverType::Automatic), expected);
+    EXPECT_EQ(projector.GetMirror()->Resolve(SolverType::Quartic), SolverType::Quartic);
+    EXPECT_EQ(projector.GetMirror()->Resolve(SolverType::Iterative), SolverType::Iterative);
+    int compared = 0;
+    for (int k = 0; k < 20000 && compared < 300; ++k)
+    {
+      const BackProjectedRay ray = projector.BackProjectCamera(Vec2(pixel(rng), pixel(rng)));
+      if (!HasProjection(ray.status))
+      {
+        continue;
+      }
+      ++compared;
+      const Vec3 P = ray.mirrorPoint + distance(rng) * ray.direction;
+      const ProjectedPoint byDefault = projector.ProjectCamera(P);
+      const ProjectedPoint chosen = projector.ProjectCamera(P, expected);
+      ASSERT_EQ(byDefault.status, chosen.status) << k;
+      EXPECT_EQ(byDefault.mirrorPoint, chosen.mirrorPoint) << k;
+      EXPECT_EQ(byDefault.pixel, chosen.pixel) << k;
+    }
+    EXPECT_GT(compared, 100);
+  }
+  EXPECT_GT(axial, 0);
+  EXPECT_GT(offAxis, 1);
+  // The scene's default.
+  EXPECT_EQ(SceneDescription().solver, SolverType::Automatic);
 }
 
 TEST(QuadricMirror, SphereAsQuadricIsTheClosedFormSphere)

@@ -189,7 +189,7 @@ def _rows(function, values, width):
     return np.ascontiguousarray(a)
 
 
-def project_points(camera, points, solver="quartic"):
+def project_points(camera, points, solver="auto"):
     """Project many world points through the mirror at once (C++, on the thread pool).
 
     The same results as ``camera.ProjectWorldPoint`` point by point.
@@ -200,7 +200,9 @@ def project_points(camera, points, solver="quartic"):
     points : array_like
         ``N x 3`` world points (or one point of 3).
     solver : {"quartic", "iterative"}, optional
-        The closed-form quartic (default) or the safeguarded Newton iteration.
+        ``"auto"`` (default): the faster where it gives the same answer (the Newton iteration
+        for the sphere and most quadrics; the quartic for a quadric with the camera on its
+        axis); or the closed-form quartic, or the safeguarded Newton iteration.
 
     Returns
     -------
@@ -233,12 +235,14 @@ def project_points(camera, points, solver="quartic"):
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
     np = _numpy()
-    if solver not in ("quartic", "iterative"):
-        raise ValueError("project_points: solver must be 'quartic' or 'iterative', not %r" % (solver,))
+    solvers = {"quartic": 0, "iterative": 1, "auto": 2}
+    if solver not in solvers:
+        raise ValueError("project_points: solver must be 'auto', 'quartic' or 'iterative', not %r"
+                         % (solver,))
     p = _rows("project_points", points, 3)
     pixels, statuses, mirror = _vtk_out("double"), _vtk_out("int"), _vtk_out("double")
     if not camera.ProjectWorldPoints(numpy_to_vtk(p, deep=True), pixels, statuses, mirror,
-                                     1 if solver == "iterative" else 0):
+                                     solvers[solver]):
         raise ValueError(camera.GetLastError())
     n = p.shape[0]
     px = vtk_to_numpy(pixels).reshape(n, 2).copy()
