@@ -10,6 +10,7 @@
 #include "CommandLine.h"
 #include "Csv.h"
 #include "FileOutput.h"
+#include "ImageFile.h"
 #include "ImageMetrics.h"
 #include "RunMain.h"
 #include "Threads.h"
@@ -38,10 +39,17 @@ constexpr const char* kProgram = "catadioptric-compare";
 // Reads an 8- or 16-bit grey, BGR or BGRA image and converts it to RGBA8.
 bool ReadRgba(const std::string& path, cv::Mat& rgba, std::string& error)
 {
+  // A regular file, whole, of a size the project handles: checked before decoding.
+  std::vector<unsigned char> bytes;
+  catar::ImageHeader header;
+  if (!catar::ReadImageFileBytes(path, bytes, header, error))
+  {
+    return false;
+  }
   cv::Mat image;
   try
   {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   }
   catch (const cv::Exception& e)
   {

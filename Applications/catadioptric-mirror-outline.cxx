@@ -9,6 +9,7 @@
 #include "MirrorOutline.h"
 
 #include "CommandLine.h"
+#include "ImageFile.h"
 #include "RunMain.h"
 #include "Threads.h"
 
@@ -130,16 +131,19 @@ int Run(int argc, char* argv[])
   {
     return Error(error);
   }
-  if (!std::ifstream(imagePath))
+  // A regular file, whole, of a size the project handles: checked before decoding.
+  std::vector<unsigned char> bytes;
+  catar::ImageHeader header;
+  if (!catar::ReadImageFileBytes(imagePath, bytes, header, error))
   {
-    return Error("cannot open the image '" + imagePath + "'");
+    return Error(error);
   }
   // Failures are reported here, in one sentence, not by OpenCV's log.
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   cv::Mat bgr;
   try
   {
-    bgr = cv::imread(imagePath, cv::IMREAD_COLOR);
+    bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
   }
   catch (const cv::Exception& e)
   {

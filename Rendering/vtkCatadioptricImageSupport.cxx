@@ -1,6 +1,6 @@
 #include "vtkCatadioptricImageSupport.h"
 
-#include "FileInput.h"
+#include "ImageFile.h"
 
 #include "CameraModel.h"
 
@@ -193,15 +193,18 @@ vtkDataArray* vtkCatadioptricImageSupport::TextureCoordinates(vtkPolyData* mesh)
 vtkSmartPointer<vtkImageData> vtkCatadioptricImageSupport::ReadImageFile(
   const std::string& path, std::string& error)
 {
-  // A regular file (a FIFO would block, a device never end).
-  if (!catar::CheckInputFile(path, std::uint64_t(1) << 32, error))
+  // A regular file (a FIFO would block, a device never end), whole, of a size the project
+  // handles: checked before decoding.
+  std::vector<unsigned char> bytes;
+  catar::ImageHeader header;
+  if (!catar::ReadImageFileBytes(path, bytes, header, error))
   {
     return nullptr;
   }
   cv::Mat image;
   try
   {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   }
   catch (const cv::Exception& e)
   {

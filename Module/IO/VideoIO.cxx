@@ -1,8 +1,8 @@
 #include "VideoIO.h"
 
 #include "CameraModel.h" // kMaxImagePixels
-#include "FileInput.h"   // CheckInputFile
 #include "FileOutput.h"  // WriteWholeFile
+#include "ImageFile.h"   // ReadImageFileBytes
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -297,11 +297,13 @@ bool FrameReader::Read(long long k, Frame& frame, std::string& error)
     if (in.pattern)
     {
       const std::string file = FrameFileName(in.name, in.first + k);
-      if (!CheckInputFile(file, std::uint64_t(1) << 32, error))
+      std::vector<unsigned char> bytes;
+      ImageHeader header;
+      if (!ReadImageFileBytes(file, bytes, header, error))
       {
         return false;
       }
-      image = cv::imread(file, cv::IMREAD_UNCHANGED);
+      image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
       if (image.empty())
       {
         error = "cannot read '" + file + "' as an image";

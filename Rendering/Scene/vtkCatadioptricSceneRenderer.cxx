@@ -903,8 +903,9 @@ bool vtkCatadioptricSceneRenderer::Render()
   auto t0 = Clock::now();
   if (in.Background)
   {
-    in.Background->Update();
-    if (in.Background->GetErrorCode() != 0)
+    // The executive's answer: a source whose RequestData failed (an unreadable panorama) stops
+    // here, not at the size check below.
+    if (!in.Background->GetExecutive()->Update() || in.Background->GetErrorCode() != 0)
     {
       return fail("background");
     }

@@ -10,7 +10,8 @@ Each case states what must happen in its comment lines:
     # args: ARGS            extra command-line arguments (default: -o into a temporary folder)
     # generate: nested N    the case is this header followed by a scene nested N levels deep,
                             written to a temporary file (too large to keep in the repository)
-A signal (crash, abort), a hang past the timeout or any other exit status fails the case.
+A signal (crash, abort), a hang past the timeout, any other exit status, or a line printed by a
+library instead of the program (libpng's "Read Error", OpenCV's warnings) fails the case.
 """
 import os
 import re
@@ -71,6 +72,11 @@ def main():
         return 1
     if pattern and not re.search(pattern, output):
         print(f"{case}: the output does not match /{pattern}/")
+        return 1
+    # Every line is the program's own: no decoder's or library's chatter on standard error.
+    chatter = re.search(r"libpng|Premature end of JPEG|imread_|\[ ?WARN|\[ERROR|TBB Warning", output)
+    if chatter:
+        print(f"{case}: a library printed its own line ('{chatter.group(0)}')")
         return 1
     print(f"{case}: ended as expected ({kind}, exit status {status})")
     return 0
