@@ -6,6 +6,7 @@
 #ifndef catarProgramOutput_h
 #define catarProgramOutput_h
 
+#include "vtkCatadioptricErrorText.h"
 #include "vtkLogger.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
@@ -36,24 +37,7 @@ public:
   /// without its first line and its object prefix, trailing blank lines dropped.
   static std::string Message(const std::string& text)
   {
-    std::string m = text;
-    if (m.rfind("ERROR: In ", 0) == 0 || m.rfind("Warning: In ", 0) == 0)
-    {
-      const std::size_t eol = m.find('\n');
-      m = eol == std::string::npos ? std::string() : m.substr(eol + 1);
-    }
-    const std::size_t open = m.find(" (0x");
-    const std::size_t close = m.find("): ");
-    if (open != std::string::npos && close != std::string::npos && open < close &&
-      m.find('\n') > close)
-    {
-      m = m.substr(close + 3);
-    }
-    while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
-    {
-      m.pop_back();
-    }
-    return m;
+    return vtkCatadioptricErrorText::Short(text);
   }
 
   /// The last error line printed (without the program's name).

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
@@ -29,6 +30,43 @@ bool Exists(const std::string& path)
 std::string Join(const std::string& dir, const std::string& path)
 {
   return dir.empty() ? path : dir + "/" + path;
+}
+
+// The output size against the calibration's: one side given, the other follows the aspect ratio;
+// both given, a rescale that is not uniform (to within a pixel) stretches the image and the
+// mirror with it, and is refused unless `stretch` asks for it.
+void FitOutputToCamera(SceneDescription& scene, const bool given[2], bool stretch)
+{
+  const double W = scene.camera.intrinsics.width;
+  const double H = scene.camera.intrinsics.height;
+  if (!(W > 0 && H > 0) || (!given[0] && !given[1]))
+  {
+    return;
+  }
+  if (!given[1])
+  {
+    scene.height = std::max(1, static_cast<int>(std::lround(scene.width * H / W)));
+    return;
+  }
+  if (!given[0])
+  {
+    scene.width = std::max(1, static_cast<int>(std::lround(scene.height * W / H)));
+    return;
+  }
+  const double w = scene.width, h = scene.height;
+  if (stretch || std::abs(h - w * H / W) <= 1.0 || std::abs(w - h * W / H) <= 1.0)
+  {
+    return;
+  }
+  char scales[96];
+  std::snprintf(scales, sizeof(scales), "%.4g across and %.4g down", w / W, h / H);
+  throw fs::ParseError("output: " + std::to_string(scene.width) + "x" +
+    std::to_string(scene.height) + " rescales the " + std::to_string(static_cast<int>(W)) + "x" +
+    std::to_string(static_cast<int>(H)) + " calibration by " + scales +
+    ", which stretches the image and the mirror in it; give the calibration's aspect ratio (" +
+    std::to_string(scene.width) + "x" + std::to_string(std::lround(w * H / W)) + " or " +
+    std::to_string(std::lround(h * W / H)) + "x" + std::to_string(scene.height) +
+    "), one side only, or add 'stretch: true'");
 }
 
 // A file named in a scene, found (FindDataFile); a URL, or a name found nowhere, is an error that
@@ -590,7 +628,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
   {
     try
     {
-      fs::CheckKeys(output, { "width", "height" });
+      fs::CheckKeys(output, { "width", "height", "stretch" });
     }
     catch (const fs::ParseError& e)
     {
@@ -613,6 +651,7 @@ void ReadScene(const fs::Node& root, const std::string& baseDir, SceneDescriptio
     }
     scene.width = static_cast<int>(w);
     scene.height = static_cast<int>(h);
+    FitOutputToCamera(scene, given, fs::Flag(output, "stretch", false));
   }
   const std::string solver = fs::String(root, "solver", "auto");
   if (solver == "quartic")

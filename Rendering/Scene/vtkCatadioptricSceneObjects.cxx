@@ -11,6 +11,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
+#include "vtkCatadioptricErrorText.h"
 #include "vtkCatadioptricImageSupport.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricRemesher.h"
@@ -45,7 +46,6 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -54,27 +54,6 @@
 
 namespace
 {
-// A VTK error or warning text without its decoration: the "ERROR: In FILE, line N" line, the
-// "CLASS (0x...): " prefix and the trailing blank lines.
-std::string ShortMessage(std::string text)
-{
-  if (text.rfind("ERROR: In ", 0) == 0 || text.rfind("Warning: In ", 0) == 0)
-  {
-    const std::size_t eol = text.find('\n');
-    text = eol == std::string::npos ? std::string() : text.substr(eol + 1);
-  }
-  const std::size_t prefix = text.find("): ");
-  if (prefix != std::string::npos && text.find(" (0x") < prefix)
-  {
-    text = text.substr(prefix + 3);
-  }
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-  {
-    text.pop_back();
-  }
-  return text;
-}
-
 // Collects the error messages an algorithm reports, without VTK's decoration, "; " between.
 struct ErrorCollector
 {
@@ -85,7 +64,7 @@ struct ErrorCollector
     if (callData)
     {
       self->Messages +=
-        (self->Messages.empty() ? "" : "; ") + ShortMessage(static_cast<const char*>(callData));
+        (self->Messages.empty() ? "" : "; ") + vtkCatadioptricErrorText::Short(static_cast<const char*>(callData));
     }
   }
 };
@@ -489,7 +468,7 @@ struct WarningCollector
       return;
     }
     static_cast<WarningCollector*>(clientData)
-      ->Lines.push_back(ShortMessage(static_cast<const char*>(callData)));
+      ->Lines.push_back(vtkCatadioptricErrorText::Short(static_cast<const char*>(callData)));
   }
 };
 

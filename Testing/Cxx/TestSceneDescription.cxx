@@ -86,6 +86,49 @@ objects:
   EXPECT_EQ(s.objects[1].scale, Vec3(2, 2, 2));
 }
 
+// The output size: one side given, the other keeps the calibration's aspect ratio; a rescale to
+// another aspect ratio (which stretches the mirror into an ellipse) is refused unless asked for;
+// a uniform one within a pixel of rounding is accepted.
+TEST(SceneDescription, OutputSizeKeepsTheAspectRatio)
+{
+  // kCamera is 320 x 240.
+  struct Case
+  {
+    const char* output;
+    int width, height; ///< 0: refused
+  };
+  const Case cases[] = { { "{ width: 640, height: 480 }", 640, 480 },
+    { "{ width: 161, height: 121 }", 161, 121 }, // 161 x 120.75: rounding
+    { "{ width: 1000 }", 1000, 750 }, { "{ height: 60 }", 80, 60 },
+    { "{ width: 1920, height: 1080 }", 0, 0 }, { "{ width: 320, height: 200 }", 0, 0 },
+    { "{ width: 1920, height: 1080, stretch: true }", 1920, 1080 } };
+  for (const Case& c : cases)
+  {
+    SceneDescription s;
+    std::string error;
+    const bool ok =
+      ParseScene(std::string(kCamera) + "output: " + c.output + "\n", "", s, error);
+    if (c.width == 0)
+    {
+      EXPECT_FALSE(ok) << c.output;
+      EXPECT_NE(error.find("stretches the image and the mirror"), std::string::npos) << error;
+      EXPECT_NE(error.find("stretch: true"), std::string::npos) << error;
+      continue;
+    }
+    ASSERT_TRUE(ok) << c.output << ": " << error;
+    EXPECT_EQ(s.width, c.width) << c.output;
+    EXPECT_EQ(s.height, c.height) << c.output;
+  }
+  SceneDescription s;
+  std::string error;
+  ASSERT_FALSE(ParseScene(std::string(kCamera) + "output: { width: 1920, height: 1080 }\n", "", s,
+    error));
+  EXPECT_NE(error.find("1920x1080 rescales the 320x240 calibration by 6 across and 4.5 down"),
+    std::string::npos)
+    << error;
+  EXPECT_NE(error.find("(1920x1440 or 1440x1080)"), std::string::npos) << error;
+}
+
 // Plain YAML without OpenCV's header; flags as true/false or 1/0; anything else for a flag is an
 // error that names the key.
 TEST(SceneDescription, PlainYamlAndFlags)
