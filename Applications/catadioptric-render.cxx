@@ -337,6 +337,10 @@ void OnProgress(vtkObject* caller, unsigned long, void* clientData, void* callDa
 {
   auto* p = static_cast<WorkProgress*>(clientData);
   auto* renderer = static_cast<vtkCatadioptricSceneRenderer*>(caller);
+  if (StopSignal != 0)
+  {
+    renderer->AbortExecuteOn(); // long work (remeshing) stops at its next step
+  }
   const double fraction = callData ? *static_cast<double*>(callData) : 0.0;
   const std::string text = renderer->GetProgressText();
   const auto now = Clock::now();
@@ -741,7 +745,21 @@ int Run(int argc, char* argv[])
   renderer->SetReferenceSamples(reference ? referenceSamples : 0);
   renderer->SetOutputVisibleTriangle(!maskName.empty() || !idsName.empty());
   renderer->SetOutputPathLength(!depthName.empty());
-  if (!renderer->LoadScene())
+  // SIGINT or SIGTERM while the scene loads (remeshing can take minutes) stops it at the next
+  // progress step; a second one ends the program at once.
+  std::signal(SIGINT, OnStopSignal);
+  std::signal(SIGTERM, OnStopSignal);
+  const bool loaded = renderer->LoadScene();
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (StopSignal != 0)
+  {
+    const int signal = StopSignal;
+    std::fprintf(stderr, "\n%s: stopped by %s while reading the scene; nothing was written\n",
+      kProgram, signal == SIGINT ? "SIGINT" : "SIGTERM");
+    return 128 + signal;
+  }
+  if (!loaded)
   {
     catar::PrintError(kProgram, renderer->GetLastError());
     return 1;

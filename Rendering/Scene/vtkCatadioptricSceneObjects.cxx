@@ -63,8 +63,8 @@ struct ErrorCollector
     auto* self = static_cast<ErrorCollector*>(clientData);
     if (callData)
     {
-      self->Messages +=
-        (self->Messages.empty() ? "" : "; ") + vtkCatadioptricErrorText::Short(static_cast<const char*>(callData));
+      self->Messages += (self->Messages.empty() ? "" : "; ") +
+        vtkCatadioptricErrorText::Short(static_cast<const char*>(callData));
     }
   }
 };
@@ -535,6 +535,10 @@ vtkSmartPointer<vtkPolyData> vtkCatadioptricSceneObjects::Remesh(vtkPolyData* me
     remesher->AddObserver(vtkCommand::ProgressEvent, progress);
   }
   remesher->Update();
+  if (remesher->GetAbortExecute())
+  {
+    throw std::runtime_error("stopped while remeshing");
+  }
   if (remesher->GetErrorCode() != 0 || !errors.Messages.empty())
   {
     const std::string said = "Remeshing failed: ";

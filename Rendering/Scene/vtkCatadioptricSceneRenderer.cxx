@@ -326,6 +326,12 @@ vtkCatadioptricSceneRenderer::vtkCatadioptricSceneRenderer()
       auto* algorithm = vtkAlgorithm::SafeDownCast(caller);
       double fraction = algorithm ? algorithm->GetProgress() : 0.0;
       self->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
+      // A stop asked for (by an observer of the event just sent) reaches the running algorithm,
+      // which honours its AbortExecute at its next step.
+      if (self->GetAbortExecute() && algorithm)
+      {
+        algorithm->SetAbortExecute(1);
+      }
     });
   this->Internal->Tracer->AddObserver(vtkCommand::ProgressEvent, this->Internal->Progress);
 }
@@ -351,6 +357,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
   Internals& in = *this->Internal;
   in.Loaded = false;
   in.Error.clear();
+  this->AbortExecute = false; // not SetAbortExecute: that marks the renderer modified
   in.ObjectMeshes.clear();
   in.ObjectNames.clear();
   std::fill(in.Times, in.Times + kNumberOfStages, 0.0);

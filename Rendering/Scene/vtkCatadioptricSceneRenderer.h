@@ -190,6 +190,16 @@ public:
   /// work ("remeshing bunny", "reference render").
   const char* GetProgressText();
 
+  ///@{
+  /// Stops long work (remeshing in LoadScene, a reference render) at its next progress step, as
+  /// vtkAlgorithm's AbortExecute does: set it from a ProgressEvent observer (or a signal
+  /// handler). LoadScene then fails with an error that says so ("stopped while remeshing"), and
+  /// clears it when it starts.
+  vtkSetMacro(AbortExecute, bool);
+  vtkGetMacro(AbortExecute, bool);
+  vtkBooleanMacro(AbortExecute, bool);
+  ///@}
+
   /// The scene's camera; change its pose and call Render() again for a new frame.
   vtkCatadioptricCamera* GetCamera();
 
@@ -241,6 +251,7 @@ protected:
   bool JoinObjects = true;
   double AdaptiveTolerance = 0.0;
   int Antialias = 0;
+  bool AbortExecute = false;
   bool TransparentBackground = false;
   int ReferenceSamples = 0;
   bool OutputVisibleTriangle = false;

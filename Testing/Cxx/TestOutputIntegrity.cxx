@@ -310,6 +310,63 @@ TEST(OutputIntegrity, SignalsKeepAPartialVideo)
   }
 }
 
+// SIGINT while the scene loads (a remeshing of about 250 000 triangles, seconds of work): the
+// remesher stops at its next step, the program says so, writes nothing and exits with 130
+// (before, the signal's default action killed it in the middle of the remeshing).
+TEST(OutputIntegrity, SignalStopsTheRemeshing)
+{
+  const std::string dir = Folder("signal-remesh");
+  std::ofstream(dir + "/scene.yaml")
+    << "camera: " << CATAR_SOURCE_DIR << "/Data/calibration/demo-camera.yaml\n"
+    << "background: { type: color }\n"
+    << "objects:\n  - { type: sphere, radius: 0.2, translate: [ 0, -0.5, 1.0 ], "
+       "remesh: { target_area: 2e-6 } }\n";
+  const std::string out = dir + "/out.png";
+  std::remove(out.c_str());
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0)
+  {
+    ::dup2(fds[1], 2);
+    ::dup2(fds[1], 1);
+    ::close(fds[0]);
+    ::setenv("CATAR_PROGRESS_AFTER", "0", 1); // a progress line at once
+    ::execl(CATAR_RENDER_PROGRAM, CATAR_RENDER_PROGRAM, (dir + "/scene.yaml").c_str(), "-o",
+      out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  std::string output;
+  char buffer[4096];
+  while (output.find("remeshing sphere") == std::string::npos)
+  {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n <= 0)
+    {
+      break;
+    }
+    output.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::kill(pid, SIGINT);
+  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;)
+  {
+    output.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal: " << output;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << output;
+  EXPECT_NE(output.find("stopped while remeshing"), std::string::npos) << output;
+  EXPECT_NE(output.find("stopped by SIGINT while reading the scene; nothing was written"),
+    std::string::npos)
+    << output;
+  EXPECT_EQ(output.find("252"), std::string::npos) << "the remeshing finished: " << output;
+  EXPECT_FALSE(Exists(out));
+}
+
 // Two renders to one file at once: the file is one of the two videos, whole (before, both
 // exited 0 and the file mixed their frames).
 TEST(OutputIntegrity, TwoWritersLeaveOneWholeVideo)
