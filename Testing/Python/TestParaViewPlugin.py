@@ -45,6 +45,43 @@ def check_menu():
     print("menu: the %d proxies under CatadioptricAR" % sum(len(p) for p in names.values()))
 
 
+def check_selection_goes_to_the_meshes():
+    """ParaView's Filters menu gives the selected object to the first input property in the
+    proxy's XML order (pqFiltersMenuReaction::createFilter: the first of
+    pqPipelineFilter::getInputPorts, which walks vtkSMOrderedPropertyIterator). For every plugin
+    filter that first input is a required one that takes meshes, so that selecting the painter
+    sort (or the projection) and applying the compositor or the ray tracer connects it as Input,
+    not as the optional Frame."""
+    pxm = servermanager.ProxyManager().SMProxyManager
+    mesh = simple.Sphere()  # a vtkPolyData, as the projection and the sort give
+    mesh.UpdatePipeline()
+    checked = 0
+    for name in ["CatadioptricRemesher", "CatadioptricPointSetSurface", "CatadioptricProjection",
+                 "CatadioptricLighting", "CatadioptricPainterSort", "CatadioptricCompositor",
+                 "CatadioptricRayTracer"]:
+        prototype = pxm.GetPrototypeProxy("filters", name)
+        it = servermanager.vtkSMOrderedPropertyIterator()
+        it.SetProxy(prototype)
+        it.Begin()
+        inputs = []
+        while not it.IsAtEnd():
+            prop = it.GetProperty()
+            if prop.IsA("vtkSMInputProperty"):
+                hints = prop.GetHints()
+                if not (hints and hints.FindNestedElementByName("NoGUI")):
+                    inputs.append((it.GetKey(), prop))
+            it.Next()
+        assert inputs, name
+        first, prop = inputs[0]
+        hints = prop.GetHints()
+        assert not (hints and hints.FindNestedElementByName("Optional")), (name, first)
+        domain = prop.GetDomain("input_type")
+        assert domain is not None and domain.IsInDomain(mesh.SMProxy, 0), (name, first)
+        checked += 1
+    simple.Delete(mesh)
+    print("menu selection: the first input of %d filters takes the selected meshes" % checked)
+
+
 def check_first_apply():
     """With every property at its default (no calibration file), the pipeline draws through the
     demo camera; the images show in their own colours; the camera's properties are grouped; a bad
@@ -167,6 +204,7 @@ def check_colour_arrays():
 def main():
     simple.LoadPlugin(plugin, remote=False)
     check_menu()
+    check_selection_goes_to_the_meshes()
     check_first_apply()
     check_colour_arrays()
     # The plugin's proxies are now in paraview.simple, named after their labels.
