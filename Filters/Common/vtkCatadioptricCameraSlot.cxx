@@ -155,7 +155,12 @@ vtkMTimeType vtkCatadioptricCameraSlot::GetCameraMTime() const
 
 bool vtkCatadioptricCameraSlot::SetMirrorType(const char* type)
 {
-  const std::string name = type ? type : "";
+  // ParaView's panel names the default "from calibration" (a blank entry looked unset).
+  std::string name = type ? type : "";
+  if (name == kMirrorFromCalibration)
+  {
+    name.clear();
+  }
   if (name == this->MirrorType)
   {
     return false;

@@ -62,7 +62,9 @@ public:
 
   /// A mirror in place of the camera's (for ParaView's panel): a type ("" for the camera's own)
   /// and its numbers. Setters return true when they changed something.
+  /// "from calibration" is the same as "": keep the camera's own mirror (ParaView's panel shows it).
   bool SetMirrorType(const char* type);
+  static constexpr const char* kMirrorFromCalibration = "from calibration";
   const char* GetMirrorType() const { return this->MirrorType.c_str(); }
   bool SetNumberOfMirrorParameters(int n);
   bool SetMirrorParameter(int i, double value);
@@ -134,7 +136,8 @@ private:
  *    camera object is set (e.g. from ParaView).
  *  - SetMirrorType, SetNumberOfMirrorParameters, SetMirrorParameter and their getters: a mirror in
  *    place of the camera's (ParaView's panel sets these): a type of
- *    vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default) to keep the camera's own, and
+ *    vtkCatadioptricCamera::GetMirrorTypes(), or "" (the default; also "from calibration", as
+ *    ParaView's panel names it) to keep the camera's own, and
  *    that type's numbers in the order of its keys (Documentation/mirrors.md).
  *  - The panel camera, used when no camera object and no calibration file are set: the built-in
  *    demo camera's values (Data/calibration/demo-camera.yaml) until changed. CameraImageSize in

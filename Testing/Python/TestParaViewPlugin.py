@@ -310,7 +310,10 @@ def main():
         panelExact = count(servermanager.Fetch(tracer).GetPointData().GetScalars())
         assert (panelFast, panelExact) == (hyperMagenta, hyperExact), (panelFast, panelExact)
         for proxy in (projection, frame, tracer):
-            proxy.MirrorType = ""
+            # The panel's default names itself (a blank entry looked unset).
+            default = proxy.SMProxy.GetProperty("MirrorType").GetDefaultValue(0)
+            assert default == "from calibration", default
+            proxy.MirrorType = default
             proxy.MirrorParameters = []
         compositor.UpdatePipeline()
         assert count(servermanager.Fetch(compositor).GetPointData().GetScalars()) == magenta
