@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -1029,23 +1030,53 @@ bool QuadricSurface::AxialReflect(const Vec3& P, Vec3& mirrorPoint, ProjectionSt
       status = s;
     }
   };
+  auto residualAt = [&](double theta) {
+    double residual = 0.0, rho = 0.0, z = 0.0;
+    return this->AxialResidual(theta, rhoP, zP, residual, rho, z)
+      ? residual
+      : std::numeric_limits<double>::quiet_NaN();
+  };
+  constexpr int kCloser = 14; // down to 1e-14 of a sample step from an end on the axis
+  std::array<double, kSamples + 1 + 2 * kCloser> thetas{};
   for (const std::pair<double, double>& interval : this->AxialIntervals)
   {
-    double previousTheta = 0.0, previousResidual = 0.0;
-    for (int i = 0; i <= kSamples; ++i)
+    // Uniform samples; where an interval ends on the axis (a ray along the axis meets the vertex,
+    // which for a cone is the apex, where the normal and so the residual jump), samples closing
+    // in on that end geometrically, so that a reflection next to it (1e-4 of the interval away
+    // and closer) is bracketed by samples off the apex. In increasing order.
+    const double width = interval.second - interval.first;
+    const double step = width / kSamples;
+    const double onAxis = 1e-9 * this->ThetaMax;
+    std::size_t count = 0;
+    thetas[count++] = interval.first;
+    if (std::abs(interval.first) <= onAxis)
     {
-      const double theta =
-        interval.first + (interval.second - interval.first) * i / static_cast<double>(kSamples);
-      double residual = std::numeric_limits<double>::quiet_NaN(), rho = 0.0, z = 0.0;
-      if (!this->AxialResidual(theta, rhoP, zP, residual, rho, z))
+      for (int k = kCloser; k >= 1; --k)
       {
-        residual = std::numeric_limits<double>::quiet_NaN();
+        thetas[count++] = interval.first + step * std::pow(10.0, -k);
       }
+    }
+    for (int i = 1; i < kSamples; ++i)
+    {
+      thetas[count++] = interval.first + width * i / static_cast<double>(kSamples);
+    }
+    if (std::abs(interval.second) <= onAxis)
+    {
+      for (int k = 1; k <= kCloser; ++k)
+      {
+        thetas[count++] = interval.second - step * std::pow(10.0, -k);
+      }
+    }
+    thetas[count++] = interval.second;
+    double previousTheta = 0.0, previousResidual = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const double residual = residualAt(thetas[i]);
       if (i > 0)
       {
-        consider(previousTheta, previousResidual, theta, residual);
+        consider(previousTheta, previousResidual, thetas[i], residual);
       }
-      previousTheta = theta;
+      previousTheta = thetas[i];
       previousResidual = residual;
     }
   }
@@ -1147,6 +1178,17 @@ ProjectionStatus QuadricSurface::Reflect(
     if (attempt(this->TablePoints[order[k].second]))
     {
       return ProjectionStatus::Valid;
+    }
+  }
+  // Newton found nothing from any start; an axial placement has the exhaustive search left (a
+  // reflection next to a cone's apex, where the normal turns too fast for Newton's steps).
+  if (this->Axial && found == ProjectionStatus::NoReflection &&
+    !(this->Resolve(solver) == SolverType::Quartic && !guess))
+  {
+    ProjectionStatus status = ProjectionStatus::NoReflection;
+    if (this->AxialReflect(P, mirrorPoint, status))
+    {
+      return status;
     }
   }
   mirrorPoint.setZero();
