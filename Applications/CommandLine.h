@@ -3,6 +3,9 @@
 #ifndef catarCommandLine_h
 #define catarCommandLine_h
 
+#include "EditDistance.h"
+#include "Threads.h"
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -15,28 +18,6 @@ namespace catar
 {
 namespace command_line
 {
-/// Levenshtein distance between a and b (options are short: quadratic is fine).
-inline std::size_t EditDistance(const std::string& a, const std::string& b)
-{
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j)
-  {
-    row[j] = j;
-  }
-  for (std::size_t i = 1; i <= a.size(); ++i)
-  {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
-    {
-      const std::size_t up = row[j];
-      row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1]) });
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 /// The option of app closest to `given` ("--tolerence", "--tolerence=3"), or "" when none is
 /// close: at most 2 edits, and fewer than a third of the name's letters.
 inline std::string ClosestOption(const CLI::App& app, std::string given)
@@ -70,7 +51,7 @@ inline std::string ClosestOption(const CLI::App& app, std::string given)
 } // namespace command_line
 
 /// Adds --threads N (1 to 1024): the number of threads of the parallel loops (the default: one a
-/// core). The program applies it after parsing.
+/// core). ParseCommandLine adds it and applies it.
 inline CLI::Option* AddThreadsOption(CLI::App& app, int& threads)
 {
   return app
@@ -79,16 +60,20 @@ inline CLI::Option* AddThreadsOption(CLI::App& app, int& threads)
     ->check(CLI::Range(1, 1024));
 }
 
-/// Parses argv into app, which gets a --version flag ("PROGRAM VERSION") and a footer line that
-/// says where the documentation is installed. Returns -1 to go on;
+/// Parses argv into app, which gets a --version flag ("PROGRAM VERSION"), --threads N (applied
+/// here with UseThreads; its value, 0 when not given, also goes to *threadsOut) and a footer
+/// line that says where the documentation is installed. Returns -1 to go on;
 /// otherwise the exit status to return: 0 after printing the help (-h, --help) or the version,
 /// 2 after a usage error, which is printed once on standard error as
 /// "PROGRAM: what (run with --help for usage)", with "did you mean --x?" when an unknown option is
 /// close to one of app's. Options take their value as --option value or --option=value. Nothing
 /// is coloured.
-inline int ParseCommandLine(CLI::App& app, const char* program, int argc, char** argv)
+inline int ParseCommandLine(
+  CLI::App& app, const char* program, int argc, char** argv, int* threadsOut = nullptr)
 {
   app.set_version_flag("--version", std::string(program) + " " + CATAR_VERSION);
+  int threads = 0;
+  AddThreadsOption(app, threads);
   // Where the documents named in the help are once installed, and the manual page.
   const std::string footer = app.get_footer();
   app.footer(footer + (footer.empty() ? "" : "\n\n") +
@@ -127,6 +112,11 @@ inline int ParseCommandLine(CLI::App& app, const char* program, int argc, char**
     std::fprintf(
       stderr, "%s: %s%s (run with --help for usage)\n", program, e.what(), suggestion.c_str());
     return 2;
+  }
+  UseThreads(threads);
+  if (threadsOut)
+  {
+    *threadsOut = threads;
   }
   return -1;
 }

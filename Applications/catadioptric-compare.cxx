@@ -13,7 +13,6 @@
 #include "ImageFile.h"
 #include "ImageMetrics.h"
 #include "RunMain.h"
-#include "Threads.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -188,14 +187,11 @@ int Run(int argc, char* argv[])
     "the PSNR over the union of the silhouettes only");
   app.add_option("--csv", csvName, "also write a header and one row of the metrics");
   app.add_option("--diff", diffName, "also write |A - B| x 4 as an image (PNG, ...)");
-  int threads = 0;
-  catar::AddThreadsOption(app, threads);
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
   {
     return parsed;
   }
-  catar::UseThreads(threads);
   if (!backgroundText.empty())
   {
     ParseColour(backgroundText, options.background);

@@ -11,7 +11,6 @@
 #include "CommandLine.h"
 #include "ImageFile.h"
 #include "RunMain.h"
-#include "Threads.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
@@ -108,14 +107,11 @@ int Run(int argc, char* argv[])
     "-o,--output", output, "write the calibration with the mirror {type: sphere, center, radius}");
   app.add_option("--overlay", overlay,
     "write the image with the detected outline points (green) and the sphere's outline (red)");
-  int threads = 0;
-  catar::AddThreadsOption(app, threads);
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
   {
     return parsed;
   }
-  catar::UseThreads(threads);
 
   if (!(radius > 0.0) || !std::isfinite(radius))
   {

@@ -11,7 +11,6 @@
 
 #include "CommandLine.h"
 #include "RunMain.h"
-#include "Threads.h"
 
 #include <cerrno>
 #include <cmath>
@@ -194,14 +193,11 @@ int Run(int argc, char* argv[])
     ->type_name("PX")
     ->check(positive);
   app.add_option("--seed", options.seed, "RANSAC seed (default 0)")->type_name("N");
-  int threads = 0;
-  catar::AddThreadsOption(app, threads);
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
   {
     return parsed;
   }
-  catar::UseThreads(threads);
 
   catar::CameraModel camera;
   std::string error;

@@ -20,7 +20,6 @@
 #include "ProgramOutput.h"
 #include "RunMain.h"
 #include "SceneDescription.h"
-#include "Threads.h"
 #include "VideoIO.h"
 #include "vtkPointData.h"
 #include "vtkTypeInt64Array.h"
@@ -638,8 +637,7 @@ int Run(int argc, char* argv[])
     "--json", Json, "print the summary (sizes, counts, the time of each stage) as one JSON object");
   app.add_flag("--print-demo-scene", printDemo, "write the demo scene's YAML to standard output");
   int threads = 0;
-  catar::AddThreadsOption(app, threads);
-  const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
+  const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv, &threads);
   if (parsed >= 0)
   {
     return parsed;
@@ -715,7 +713,6 @@ int Run(int argc, char* argv[])
   {
     vtkCatadioptricParallel::EnableThreads(threads);
   }
-  catar::UseThreads(threads);
 
   vtkNew<vtkCatadioptricSceneRenderer> renderer;
   WorkProgress workProgress;

@@ -62,7 +62,8 @@ public:
 
   /// A mirror in place of the camera's (for ParaView's panel): a type ("" for the camera's own)
   /// and its numbers. Setters return true when they changed something.
-  /// "from calibration" is the same as "": keep the camera's own mirror (ParaView's panel shows it).
+  /// "from calibration" is the same as "": keep the camera's own mirror (ParaView's panel shows
+  /// it).
   bool SetMirrorType(const char* type);
   static constexpr const char* kMirrorFromCalibration = "from calibration";
   const char* GetMirrorType() const { return this->MirrorType.c_str(); }

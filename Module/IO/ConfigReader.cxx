@@ -1,5 +1,7 @@
 #include "ConfigReader.h"
 
+#include "EditDistance.h"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -327,28 +329,6 @@ bool Flag(const Node& parent, const std::string& key, bool fallback)
 
 namespace
 {
-// Edit distance (insertions, deletions, substitutions), for key suggestions.
-std::size_t EditDistance(const std::string& a, const std::string& b)
-{
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j)
-  {
-    row[j] = j;
-  }
-  for (std::size_t i = 1; i <= a.size(); ++i)
-  {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
-    {
-      const std::size_t up = row[j];
-      row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1) });
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 // The deepest nesting of `text`: flow brackets ([ {) outside quotes and comments, plus the
 // levels of block indentation (a stack of increasing indents, "- " items counting as one more).
 int Nesting(const std::string& text)

@@ -36,7 +36,8 @@ public:
   int GetBatchSize() const { return this->BatchSize; }
 
   /// Forward projection of a point given in the camera frame / world frame.
-  ProjectedPoint ProjectCamera(const Vec3& pCamera, SolverType solver = SolverType::Automatic) const;
+  ProjectedPoint ProjectCamera(
+    const Vec3& pCamera, SolverType solver = SolverType::Automatic) const;
   ProjectedPoint ProjectWorld(const Vec3& pWorld, SolverType solver = SolverType::Automatic) const;
   /// Forward projection of a world point whose reflection point is known to be near mirrorGuess
   /// (camera frame; e.g. the mean of the reflection points of a triangle's vertices, for its

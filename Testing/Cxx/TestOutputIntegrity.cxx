@@ -135,6 +135,63 @@ catar_test::ProgramRun Render(const std::string& arguments)
   return catar_test::RunProgram(CATAR_RENDER_PROGRAM, arguments);
 }
 
+// Runs catadioptric-render with `arguments` (CATAR_PROGRESS_AFTER=0: progress at once), reads its
+// output until `waitFor` appears, sends `signal`, and reads the rest. Exited: the status; killed
+// by a signal: -1.
+catar_test::ProgramRun RenderUntilThenSignal(
+  const std::vector<std::string>& arguments, const std::string& waitFor, int signal)
+{
+  catar_test::ProgramRun run;
+  int fds[2];
+  if (::pipe(fds) != 0)
+  {
+    return run;
+  }
+  const pid_t pid = ::fork();
+  if (pid < 0)
+  {
+    return run;
+  }
+  if (pid == 0)
+  {
+    ::dup2(fds[1], 2);
+    ::dup2(fds[1], 1);
+    ::close(fds[0]);
+    ::setenv("CATAR_PROGRESS_AFTER", "0", 1);
+    std::vector<char*> argv{ const_cast<char*>(CATAR_RENDER_PROGRAM) };
+    for (const std::string& a : arguments)
+    {
+      argv.push_back(const_cast<char*>(a.c_str()));
+    }
+    argv.push_back(nullptr);
+    ::execv(CATAR_RENDER_PROGRAM, argv.data());
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  char buffer[4096];
+  while (run.output.find(waitFor) == std::string::npos)
+  {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n <= 0)
+    {
+      break;
+    }
+    run.output.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::kill(pid, signal);
+  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;)
+  {
+    run.output.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  if (::waitpid(pid, &status, 0) == pid && WIFEXITED(status))
+  {
+    run.status = WEXITSTATUS(status);
+  }
+  return run;
+}
+
 // Frames of a video that can be read back.
 long long Frames(const std::string& video)
 {
@@ -265,42 +322,10 @@ TEST(OutputIntegrity, SignalsKeepAPartialVideo)
   for (const int signal : { SIGINT, SIGTERM })
   {
     std::remove((dir + "/out.partial.mp4").c_str());
-    int fds[2];
-    ASSERT_EQ(::pipe(fds), 0);
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0)
-    {
-      ::dup2(fds[1], 2);
-      ::dup2(fds[1], 1);
-      ::close(fds[0]);
-      ::execl(CATAR_RENDER_PROGRAM, CATAR_RENDER_PROGRAM, scene.c_str(), "-o",
-        (dir + "/out.mp4").c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    ::close(fds[1]);
     // Its first progress line (10 % of the frames) says it is writing: then the signal.
-    std::string output;
-    char buffer[4096];
-    while (output.find("frames,") == std::string::npos)
-    {
-      const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-      if (n <= 0)
-      {
-        break;
-      }
-      output.append(buffer, static_cast<std::size_t>(n));
-    }
-    ::kill(pid, signal);
-    for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;)
-    {
-      output.append(buffer, static_cast<std::size_t>(n));
-    }
-    ::close(fds[0]);
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-    ASSERT_TRUE(WIFEXITED(status)) << output;
-    EXPECT_EQ(WEXITSTATUS(status), 128 + signal) << output;
+    const auto run = RenderUntilThenSignal({ scene, "-o", dir + "/out.mp4" }, "frames,", signal);
+    const std::string& output = run.output;
+    EXPECT_EQ(run.status, 128 + signal) << output;
     EXPECT_NE(output.find(signal == SIGINT ? "SIGINT" : "SIGTERM"), std::string::npos) << output;
     EXPECT_NE(output.find("out.partial.mp4"), std::string::npos) << output;
     EXPECT_FALSE(Exists(dir + "/out.mp4"));
@@ -323,42 +348,10 @@ TEST(OutputIntegrity, SignalStopsTheRemeshing)
        "remesh: { target_area: 2e-6 } }\n";
   const std::string out = dir + "/out.png";
   std::remove(out.c_str());
-  int fds[2];
-  ASSERT_EQ(::pipe(fds), 0);
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0)
-  {
-    ::dup2(fds[1], 2);
-    ::dup2(fds[1], 1);
-    ::close(fds[0]);
-    ::setenv("CATAR_PROGRESS_AFTER", "0", 1); // a progress line at once
-    ::execl(CATAR_RENDER_PROGRAM, CATAR_RENDER_PROGRAM, (dir + "/scene.yaml").c_str(), "-o",
-      out.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  ::close(fds[1]);
-  std::string output;
-  char buffer[4096];
-  while (output.find("remeshing sphere") == std::string::npos)
-  {
-    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-    if (n <= 0)
-    {
-      break;
-    }
-    output.append(buffer, static_cast<std::size_t>(n));
-  }
-  ::kill(pid, SIGINT);
-  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;)
-  {
-    output.append(buffer, static_cast<std::size_t>(n));
-  }
-  ::close(fds[0]);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal: " << output;
-  EXPECT_EQ(WEXITSTATUS(status), 130) << output;
+  const auto run =
+    RenderUntilThenSignal({ dir + "/scene.yaml", "-o", out }, "remeshing sphere", SIGINT);
+  const std::string& output = run.output;
+  EXPECT_EQ(run.status, 130) << "killed by the signal, or another status: " << output;
   EXPECT_NE(output.find("stopped while remeshing"), std::string::npos) << output;
   EXPECT_NE(output.find("stopped by SIGINT while reading the scene; nothing was written"),
     std::string::npos)

@@ -106,8 +106,7 @@ TEST(SceneDescription, OutputSizeKeepsTheAspectRatio)
   {
     SceneDescription s;
     std::string error;
-    const bool ok =
-      ParseScene(std::string(kCamera) + "output: " + c.output + "\n", "", s, error);
+    const bool ok = ParseScene(std::string(kCamera) + "output: " + c.output + "\n", "", s, error);
     if (c.width == 0)
     {
       EXPECT_FALSE(ok) << c.output;
@@ -121,8 +120,8 @@ TEST(SceneDescription, OutputSizeKeepsTheAspectRatio)
   }
   SceneDescription s;
   std::string error;
-  ASSERT_FALSE(ParseScene(std::string(kCamera) + "output: { width: 1920, height: 1080 }\n", "", s,
-    error));
+  ASSERT_FALSE(
+    ParseScene(std::string(kCamera) + "output: { width: 1920, height: 1080 }\n", "", s, error));
   EXPECT_NE(error.find("1920x1080 rescales the 320x240 calibration by 6 across and 4.5 down"),
     std::string::npos)
     << error;
