@@ -57,15 +57,14 @@ extern "C" void OnStopSignal(int signal)
 
 // The files the render reads (the scene's, `markers`), a background frame pattern expanded to
 // the frames that exist.
-catar::FileIdentities InputIdentities(const std::string& sceneFile, const std::string& markers)
+catar::FileIdentities InputIdentities(
+  vtkCatadioptricSceneRenderer* renderer, const std::string& sceneFile, const std::string& markers)
 {
   catar::FileIdentities inputs;
   std::vector<std::string> files;
-  catar::SceneDescription description;
-  std::string ignored; // the renderer has loaded it already: it reads
-  if (!sceneFile.empty() && catar::LoadScene(sceneFile, description, ignored))
+  for (int i = 0; i < renderer->GetNumberOfInputFiles(); ++i)
   {
-    files = description.InputFiles();
+    files.emplace_back(renderer->GetInputFile(i));
   }
   files.push_back(sceneFile);
   files.push_back(markers);
@@ -777,7 +776,7 @@ int Run(int argc, char* argv[])
   // No output may be an input (compared as files, not names): writing it would destroy what is
   // being read. Checked before anything is written.
   {
-    const catar::FileIdentities inputs = InputIdentities(scene, markers);
+    const catar::FileIdentities inputs = InputIdentities(renderer, scene, markers);
     std::string which;
     for (const auto& output : { std::make_pair("-o", outName), std::make_pair("--mask", maskName),
            std::make_pair("--ids", idsName), std::make_pair("--depth", depthName) })

@@ -160,6 +160,8 @@ struct vtkCatadioptricSceneRenderer::Internals
   std::string LoadedName;
   std::string Error;
   std::string MeshReports;
+  // Every file the loaded scene reads (SceneDescription::InputFiles()).
+  std::vector<std::string> InputFiles;
   double Times[kNumberOfStages] = { 0, 0, 0, 0, 0, 0, 0 };
   vtkIdType Triangles = 0;
   vtkNew<vtkCatadioptricCamera> Camera;
@@ -334,6 +336,18 @@ vtkCatadioptricSceneRenderer::vtkCatadioptricSceneRenderer()
       }
     });
   this->Internal->Tracer->AddObserver(vtkCommand::ProgressEvent, this->Internal->Progress);
+}
+
+int vtkCatadioptricSceneRenderer::GetNumberOfInputFiles()
+{
+  return this->Internal->Loaded ? static_cast<int>(this->Internal->InputFiles.size()) : 0;
+}
+
+const char* vtkCatadioptricSceneRenderer::GetInputFile(int i)
+{
+  return i >= 0 && i < this->GetNumberOfInputFiles()
+    ? this->Internal->InputFiles[static_cast<std::size_t>(i)].c_str()
+    : nullptr;
 }
 
 const char* vtkCatadioptricSceneRenderer::GetProgressText()
@@ -802,6 +816,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     return false;
   }
   in.LoadedName = name;
+  in.InputFiles = scene.InputFiles();
   in.Loaded = true;
   return true;
 }

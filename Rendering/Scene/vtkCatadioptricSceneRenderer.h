@@ -191,6 +191,15 @@ public:
   const char* GetProgressText();
 
   ///@{
+  /// Every file the loaded scene reads, as resolved: the scene file, the calibration, meshes,
+  /// textures, the background's image, panorama or video (a frame pattern as it is), the
+  /// trajectory and the marker board (catar::SceneDescription::InputFiles). None before a
+  /// successful LoadScene. An output should be none of them.
+  int GetNumberOfInputFiles();
+  const char* GetInputFile(int i);
+  ///@}
+
+  ///@{
   /// Stops long work (remeshing in LoadScene, a reference render) at its next progress step, as
   /// vtkAlgorithm's AbortExecute does: set it from a ProgressEvent observer (or a signal
   /// handler). LoadScene then fails with an error that says so ("stopped while remeshing"), and

@@ -33,6 +33,7 @@
 #include <iomanip>
 #include <iostream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -504,6 +505,31 @@ void ExpectRefused(const std::string& path, const std::string& text, const std::
   vtkObject::GlobalWarningDisplayOn();
   EXPECT_NE(std::string(r->GetLastError()).find(expected), std::string::npos)
     << expected << ": " << r->GetLastError();
+}
+
+// The renderer names every file the loaded scene reads (what catadioptric-render compares its
+// outputs with): the scene itself and its trajectory here; none before a load.
+TEST(Sequence, TheRendererNamesItsInputFiles)
+{
+  const std::string dir = Folder("input-files");
+  std::string error;
+  ASSERT_TRUE(catar::SaveTrajectory(dir + "/poses.txt", SlidingCamera(3), "matrix", error))
+    << error;
+  Write(dir + "/scene.yaml", Scene(Pose(0, 0), "trajectory: poses.txt\n", "[ 70, 0, 20 ]"));
+  vtkNew<vtkCatadioptricSceneRenderer> r;
+  r->SetSceneFileName((dir + "/scene.yaml").c_str());
+  EXPECT_EQ(r->GetNumberOfInputFiles(), 0);
+  EXPECT_EQ(r->GetInputFile(0), nullptr);
+  ASSERT_TRUE(r->LoadScene()) << r->GetLastError();
+  std::set<std::string> files;
+  for (int i = 0; i < r->GetNumberOfInputFiles(); ++i)
+  {
+    files.insert(r->GetInputFile(i));
+  }
+  EXPECT_TRUE(files.count(dir + "/scene.yaml")) << files.size();
+  EXPECT_TRUE(files.count(dir + "/poses.txt")) << files.size();
+  EXPECT_EQ(r->GetInputFile(-1), nullptr);
+  EXPECT_EQ(r->GetInputFile(r->GetNumberOfInputFiles()), nullptr);
 }
 
 // Bad sequence input ends in a sentence naming the key.
