@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -25,9 +26,11 @@ namespace
 {
 constexpr long long kMaxFrames = 10000000;
 
+// Whether `path` names something (never opened: opening a FIFO would wait for a writer).
 bool FileExists(const std::string& path)
 {
-  return std::ifstream(path).good();
+  struct stat st;
+  return !path.empty() && ::stat(path.c_str(), &st) == 0;
 }
 
 std::string Lower(std::string s)
@@ -570,7 +573,14 @@ bool FrameWriter::Open(
   const std::string ext = Extension(name);
   const int fourcc = ext == ".avi" ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G')
                                    : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
-  // Written beside the target, moved into place by Finish().
+  // Written beside the target, moved into place by Finish(), and read back: a target that is
+  // not a regular file (a FIFO, a device, or a link to one) could be neither.
+  if (IsSpecialFile(name))
+  {
+    error = "'" + name + "' is not a regular file (a FIFO or a device): a video is written whole " +
+      "to a file and then checked; write it to a file, or write numbered frames";
+    return false;
+  }
   in.temporary = TemporaryNameBeside(name);
   try
   {

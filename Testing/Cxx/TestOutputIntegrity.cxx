@@ -360,6 +360,34 @@ TEST(OutputIntegrity, SignalStopsTheRemeshing)
   EXPECT_FALSE(Exists(out));
 }
 
+// A video whose name is a FIFO or a link to a device is refused at once, and left as it was
+// (before, the FIFO was opened to see whether it existed, which waited for a writer forever).
+TEST(OutputIntegrity, VideoToAFifoOrADeviceIsRefused)
+{
+  const std::string dir = Folder("video-special");
+  const std::string scene = MakeSequence(dir, 3);
+  const std::string fifo = dir + "/out.mp4";
+  const std::string device = dir + "/null.avi";
+  std::remove(fifo.c_str());
+  std::remove(device.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  ASSERT_EQ(::symlink("/dev/null", device.c_str()), 0);
+  for (const std::string& out : { fifo, device })
+  {
+    // `timeout`: a program that waits on the FIFO fails here instead of hanging the test.
+    const auto run = catar_test::RunProgram(
+      "timeout", "60 '" + std::string(CATAR_RENDER_PROGRAM) + "' '" + scene + "' -o '" + out + "'");
+    EXPECT_EQ(run.status, 1) << out << ": " << run.output;
+    EXPECT_NE(run.output.find("is not a regular file (a FIFO or a device)"), std::string::npos)
+      << run.output;
+  }
+  struct stat st;
+  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+  ASSERT_EQ(::lstat(device.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode));
+}
+
 // Two renders to one file at once: the file is one of the two videos, whole (before, both
 // exited 0 and the file mixed their frames).
 TEST(OutputIntegrity, TwoWritersLeaveOneWholeVideo)
