@@ -62,6 +62,7 @@ catar::FileIdentities InputIdentities(
 {
   catar::FileIdentities inputs;
   std::vector<std::string> files;
+  files.reserve(static_cast<std::size_t>(renderer->GetNumberOfInputFiles()) + 2);
   for (int i = 0; i < renderer->GetNumberOfInputFiles(); ++i)
   {
     files.emplace_back(renderer->GetInputFile(i));

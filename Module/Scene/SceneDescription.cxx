@@ -78,7 +78,7 @@ std::string Resolve(const std::string& baseDir, const std::string& path, const c
     return path;
   }
   std::string error;
-  const std::string found = FindDataFile(baseDir, path, &error);
+  std::string found = FindDataFile(baseDir, path, &error);
   if (!error.empty() && path.find('%') == std::string::npos)
   {
     throw fs::ParseError(std::string(key) + ": " + error);
