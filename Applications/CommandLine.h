@@ -23,11 +23,9 @@ namespace command_line
 inline std::string ClosestOption(const CLI::App& app, std::string given)
 {
   given = given.substr(0, given.find('='));
-  std::string best;
-  std::size_t bestDistance = 3;
+  std::vector<std::string> names;
   for (const CLI::Option* option : app.get_options())
   {
-    std::vector<std::string> names;
     for (const std::string& name : option->get_lnames())
     {
       names.push_back("--" + name);
@@ -36,17 +34,10 @@ inline std::string ClosestOption(const CLI::App& app, std::string given)
     {
       names.push_back("-" + name);
     }
-    for (const std::string& name : names)
-    {
-      const std::size_t d = EditDistance(given, name);
-      if (d < bestDistance && 3 * d < name.size())
-      {
-        bestDistance = d;
-        best = name;
-      }
-    }
   }
-  return best;
+  const std::string* nearest = Nearest(given, names,
+    [](std::size_t d, const std::string& name) { return d < 3 && 3 * d < name.size(); });
+  return nearest ? *nearest : std::string();
 }
 } // namespace command_line
 

@@ -721,17 +721,8 @@ int Run(int argc, char* argv[])
   onProgress->SetClientData(&workProgress);
   renderer->AddObserver(vtkCommand::ProgressEvent, onProgress);
   // A scene that is not where it was named is looked for on the data search path
-  // (CATAR_DATA_PATH, then the installed data): `catadioptric-render scenes/two-objects.yaml`.
-  if (!scene.empty())
-  {
-    std::string notFound;
-    scene = catar::FindDataFile("", scene, &notFound);
-    if (!notFound.empty())
-    {
-      catar::PrintError(kProgram, notFound);
-      return 1;
-    }
-  }
+  // (CATAR_DATA_PATH, then the installed data) by LoadScene: `catadioptric-render
+  // scenes/two-objects.yaml`; the name found is its first input file.
   renderer->SetSceneFileName(scene.empty() ? nullptr : scene.c_str());
   renderer->SetRemeshTargetArea(targetArea);
   renderer->SetRemeshPixelTolerance(pixelTolerance);
@@ -761,6 +752,11 @@ int Run(int argc, char* argv[])
     catar::PrintError(kProgram, renderer->GetLastError());
     return 1;
   }
+  if (!scene.empty() && renderer->GetNumberOfInputFiles() > 0)
+  {
+    scene = renderer->GetInputFile(0); // where it was found
+  }
+
   const long long frames = renderer->GetNumberOfFrames();
   if (*renderer->GetSequenceNote() && !Quiet)
   {

@@ -3,6 +3,7 @@
 #include "Polygons.h"
 #include "ShadeBatch.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricLightingSupport.h"
 
@@ -845,6 +846,15 @@ bool vtkCatadioptricLighting::ShadowScene(
 int vtkCatadioptricLighting::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Out of memory (a mesh or an image too large for the memory left): the filter's error.
+  return vtkCatadioptricAllocation::Guard(
+    this, [&] { return this->Execute(inputVector, outputVector); },
+    [&] { return "lighting " + vtkCatadioptricAllocation::DescribeInput(inputVector[0]); });
+}
+
+int vtkCatadioptricLighting::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   vtkPolyData* input = nullptr;
   vtkPolyData* output = nullptr;
   if (!vtkCatadioptricMeshCheck::InputAndOutput(this, inputVector, outputVector, input, output))
@@ -938,7 +948,7 @@ int vtkCatadioptricLighting::RequestData(
     const std::vector<float>& pointBase = base.HasArray() && !base.IsPerPoint()
       ? this->Internal->GetPointBase(input, base)
       : noPointBase;
-    colors->SetNumberOfTuples(nPts);
+    vtkCatadioptricAllocation::Tuples(colors, nPts);
     unsigned char* out = colors->GetPointer(0);
     // The projection's arrays (uint8 Visible, double MirrorPoint) are read directly.
     const vtkCatadioptricPointReader points(input->GetPoints());
@@ -970,7 +980,7 @@ int vtkCatadioptricLighting::RequestData(
   {
     const vtkIdType nCells = input->GetNumberOfCells();
     const vtkIdType first = input->GetNumberOfVerts() + input->GetNumberOfLines();
-    colors->SetNumberOfTuples(nCells);
+    vtkCatadioptricAllocation::Tuples(colors, nCells);
     colors->FillValue(0);
     unsigned char* out = colors->GetPointer(0);
     vtkCellArray* polys = input->GetPolys();

@@ -230,6 +230,8 @@ protected:
   char* InputColorArrayName = nullptr;
 
 private:
+  // RequestData's work (RequestData reports running out of memory).
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   vtkCatadioptricLighting(const vtkCatadioptricLighting&) = delete;
   void operator=(const vtkCatadioptricLighting&) = delete;
 

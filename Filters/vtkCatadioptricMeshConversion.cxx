@@ -3,6 +3,7 @@
 #include "Polygons.h"
 #include "TriangleMesh.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -96,7 +97,7 @@ void vtkCatadioptricMeshConversion::FromTriangleMesh(
 {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.points.size()));
+  vtkCatadioptricAllocation::Points(points, static_cast<vtkIdType>(mesh.points.size()));
   for (size_t i = 0; i < mesh.points.size(); ++i)
   {
     points->SetPoint(static_cast<vtkIdType>(i), mesh.points[i].data());
@@ -123,7 +124,7 @@ void vtkCatadioptricMeshConversion::FromTriangleMesh(
       : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkDoubleArray>::New());
     array->SetName(attribute.name.c_str());
     array->SetNumberOfComponents(attribute.components);
-    array->SetNumberOfTuples(n);
+    vtkCatadioptricAllocation::Tuples(array, n);
     const bool isNormals = model && in->GetNormals() == model && attribute.components == 3;
     for (vtkIdType i = 0; i < n; ++i)
     {

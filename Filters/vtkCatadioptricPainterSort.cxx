@@ -2,6 +2,7 @@
 
 #include "DepthOrder.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricMeshCheck.h"
 #include "vtkCatadioptricParallel.h"
@@ -199,9 +200,9 @@ vtkSmartPointer<vtkCellArray> Gathered(InArrayT* inOffsets, InArrayT* inConnecti
     }
   }
   vtkNew<OutArrayT> offsets;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(order.size()) + 1);
+  vtkCatadioptricAllocation::Tuples(offsets, static_cast<vtkIdType>(order.size()) + 1);
   vtkNew<OutArrayT> connectivity;
-  connectivity->SetNumberOfValues(total);
+  vtkCatadioptricAllocation::Tuples(connectivity, total);
   GatherCells(off, inConnectivity->GetPointer(0), order, first, triangles, tuples, extras,
     offsets->GetPointer(0), connectivity->GetPointer(0));
   auto polys = vtkSmartPointer<vtkCellArray>::New();
@@ -257,7 +258,7 @@ std::vector<TupleGather> PrepareCellData(vtkCellData* in, vtkCellData* out,
     dst->SetName(src->GetName());
     dst->SetNumberOfComponents(src->GetNumberOfComponents());
     dst->CopyComponentNames(src);
-    dst->SetNumberOfTuples(n);
+    vtkCatadioptricAllocation::Tuples(dst, n);
     if (std::find(skip.begin(), skip.end(), src) != skip.end())
     {
     }
@@ -333,6 +334,15 @@ const double* PolygonDepths(
 int vtkCatadioptricPainterSort::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Out of memory (a mesh or an image too large for the memory left): the filter's error.
+  return vtkCatadioptricAllocation::Guard(
+    this, [&] { return this->Execute(inputVector, outputVector); },
+    [&] { return "sorting " + vtkCatadioptricAllocation::DescribeInput(inputVector[0]); });
+}
+
+int vtkCatadioptricPainterSort::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   vtkPolyData* input = nullptr;
   vtkPolyData* output = nullptr;
   if (!vtkCatadioptricMeshCheck::InputAndOutput(this, inputVector, outputVector, input, output))
@@ -397,7 +407,7 @@ int vtkCatadioptricPainterSort::RequestData(
   {
     vtkNew<vtkIdTypeArray> original;
     original->SetName(vtkCatadioptricArrayNames::OriginalCellId);
-    original->SetNumberOfTuples(nOut);
+    vtkCatadioptricAllocation::Tuples(original, nOut);
     extras.OriginalIds = original->GetPointer(0);
     outCD->AddArray(original);
   }

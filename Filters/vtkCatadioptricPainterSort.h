@@ -52,6 +52,8 @@ protected:
   std::unique_ptr<catar::DepthOrder> Order;
 
 private:
+  // RequestData's work (RequestData reports running out of memory).
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   vtkCatadioptricPainterSort(const vtkCatadioptricPainterSort&) = delete;
   void operator=(const vtkCatadioptricPainterSort&) = delete;
 };

@@ -5,6 +5,7 @@
 #include "PolygonProjection.h"
 #include "Projector.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricMeshCheck.h"
@@ -29,6 +30,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -56,7 +58,7 @@ struct PointOutputs
     this->Visible->SetName(vtkCatadioptricArrayNames::Visible);
     for (vtkDataArray* a : this->Arrays())
     {
-      a->SetNumberOfTuples(n);
+      vtkCatadioptricAllocation::Tuples(a, n);
     }
     this->Bind();
   }
@@ -104,8 +106,7 @@ struct PointOutputs
   {
     for (vtkDataArray* a : this->Arrays())
     {
-      a->Resize(n);
-      a->SetNumberOfTuples(n);
+      vtkCatadioptricAllocation::Grow(a, n);
     }
     std::unique_ptr<catar::VertexRecord[]> grown(new catar::VertexRecord[n]);
     std::copy(this->Records.get(), this->Records.get() + kept, grown.get());
@@ -159,12 +160,12 @@ struct CellArrays
     , Visible(vtkSmartPointer<vtkUnsignedCharArray>::New())
   {
     this->Depth->SetName(vtkCatadioptricArrayNames::CentroidDepth);
-    this->Depth->SetNumberOfTuples(n);
+    vtkCatadioptricAllocation::Tuples(this->Depth, n);
     this->Mirror->SetName("CentroidMirrorPoint");
     this->Mirror->SetNumberOfComponents(3);
-    this->Mirror->SetNumberOfTuples(n);
+    vtkCatadioptricAllocation::Tuples(this->Mirror, n);
     this->Visible->SetName(vtkCatadioptricArrayNames::Visible);
-    this->Visible->SetNumberOfTuples(n);
+    vtkCatadioptricAllocation::Tuples(this->Visible, n);
   }
 
   // Where catar::PolygonProjection writes, its first polygon at cell firstPoly.
@@ -285,6 +286,18 @@ int vtkCatadioptricProjection::RequestData(
   {
     return 0;
   }
+  // Out of memory (a mesh too large for the memory left): the filter's error, with the sizes.
+  return vtkCatadioptricAllocation::Guard(
+    this, [&] { return this->Project(input, output, camera); },
+    [&] {
+      return "projecting " + std::to_string(input->GetNumberOfPoints()) + " points and " +
+        std::to_string(input->GetNumberOfCells()) + " cells";
+    });
+}
+
+int vtkCatadioptricProjection::Project(
+  vtkPolyData* input, vtkPolyData* output, vtkCatadioptricCamera* camera)
+{
   const catar::Projector projector(camera->GetModel());
   // AUTOMATIC: the mirror's choice, resolved once (the batches below follow the choice).
   const catar::SolverType solver =

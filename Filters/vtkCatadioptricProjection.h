@@ -120,6 +120,9 @@ protected:
   vtkIdType NumberOfSplitTriangles = 0;
 
 private:
+  // RequestData's work once the input and the camera are checked.
+  int Project(vtkPolyData* input, vtkPolyData* output, vtkCatadioptricCamera* camera);
+
   vtkCatadioptricProjection(const vtkCatadioptricProjection&) = delete;
   void operator=(const vtkCatadioptricProjection&) = delete;
 };

@@ -2,6 +2,7 @@
 
 #include "MeshRefinement.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -78,7 +79,7 @@ void Assemble(vtkPolyData* input, const std::vector<std::int64_t>& chosen,
   const vtkIdType nNew = static_cast<vtkIdType>(added.points.size());
   vtkNew<vtkPoints> outPoints;
   outPoints->SetDataTypeToDouble();
-  outPoints->SetNumberOfPoints(nPoints + nNew);
+  vtkCatadioptricAllocation::Points(outPoints, nPoints + nNew);
   outPoints->GetData()->InsertTuples(0, nPoints, 0, points->GetData());
   vtkPointData* inPD = input->GetPointData();
   vtkNew<vtkPointData> outPD;

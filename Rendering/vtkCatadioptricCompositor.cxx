@@ -4,6 +4,7 @@
 #include "EdgeSamples.h"
 #include "Rasterizer.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
@@ -49,7 +50,7 @@ ArrayT* KeptArray(vtkSmartPointer<ArrayT>& kept, int nc, vtkIdType n)
     kept = vtkSmartPointer<ArrayT>::New();
   }
   kept->SetNumberOfComponents(nc);
-  kept->SetNumberOfTuples(n);
+  vtkCatadioptricAllocation::Tuples(kept, n);
   return kept;
 }
 
@@ -127,7 +128,7 @@ vtkSmartPointer<vtkFloatArray> PathLengthImage(const float* depth, int width, in
   const vtkIdType nPixels = static_cast<vtkIdType>(width) * height;
   auto pathLength = vtkSmartPointer<vtkFloatArray>::New();
   pathLength->SetName(vtkCatadioptricArrayNames::PathLength);
-  pathLength->SetNumberOfTuples(nPixels);
+  vtkCatadioptricAllocation::Tuples(pathLength, nPixels);
   float* to = pathLength->GetPointer(0);
   vtkCatadioptricParallel::For(0, height, 64, [&](vtkIdType y0, vtkIdType y1) {
     for (vtkIdType y = y0; y < y1; ++y)
@@ -374,6 +375,18 @@ bool vtkCatadioptricCompositor::MeshImageSize(
 
 int vtkCatadioptricCompositor::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Out of memory (a mesh or an image too large for the memory left): the filter's error.
+  return vtkCatadioptricAllocation::Guard(
+    this, [&] { return this->Execute(inputVector, outputVector); },
+    [&] {
+      return "drawing " + vtkCatadioptricAllocation::DescribeInput(inputVector[1]) + " into " +
+        vtkCatadioptricAllocation::DescribeOutputImage(outputVector);
+    });
+}
+
+int vtkCatadioptricCompositor::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkImageData* frame = vtkImageData::GetData(inputVector[0]);

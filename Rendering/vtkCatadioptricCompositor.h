@@ -148,6 +148,8 @@ protected:
   std::vector<long long> EdgeIds;
 
 private:
+  // RequestData's work (RequestData reports running out of memory).
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   vtkCatadioptricCompositor(const vtkCatadioptricCompositor&) = delete;
   void operator=(const vtkCatadioptricCompositor&) = delete;
 };

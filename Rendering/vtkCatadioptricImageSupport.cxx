@@ -4,6 +4,7 @@
 
 #include "CameraModel.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkDataArray.h"
@@ -256,7 +257,7 @@ vtkSmartPointer<vtkImageData> vtkCatadioptricImageSupport::ReadImageFile(
   }
   scalars->SetName("ImageFile");
   scalars->SetNumberOfComponents(channels);
-  scalars->SetNumberOfTuples(static_cast<vtkIdType>(image.cols) * image.rows);
+  vtkCatadioptricAllocation::Tuples(scalars, static_cast<vtkIdType>(image.cols) * image.rows);
   const size_t rowBytes = static_cast<size_t>(image.cols) * image.elemSize();
   auto* out = static_cast<unsigned char*>(scalars->GetVoidPointer(0));
   for (int j = 0; j < image.rows; ++j)
@@ -301,7 +302,7 @@ unsigned char* vtkCatadioptricImageSupport::AllocateRGBA(
   output->SetSpacing(1, 1, 1);
   // vtkImageData keeps its scalars through the pipeline's PrepareForNewData and AllocateScalars
   // reuses them when no one else holds them: the image is not allocated again every frame.
-  output->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  vtkCatadioptricAllocation::Scalars(output, VTK_UNSIGNED_CHAR, 4);
   vtkUnsignedCharArray* scalars =
     vtkUnsignedCharArray::SafeDownCast(output->GetPointData()->GetScalars());
   scalars->SetName(vtkCatadioptricArrayNames::RGBA);
@@ -334,7 +335,7 @@ catar::Frame vtkCatadioptricImageSupport::ToFrame(vtkImageData* image)
 void vtkCatadioptricImageSupport::FromFrame(const catar::Frame& frame, vtkImageData* image)
 {
   image->SetDimensions(frame.width, frame.height, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+  vtkCatadioptricAllocation::Scalars(image, VTK_UNSIGNED_CHAR, 4);
   auto* out = static_cast<unsigned char*>(image->GetScalarPointer());
   const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
   for (int y = 0; y < frame.height; ++y)

@@ -4,6 +4,7 @@
 #include "Projector.h"
 #include "RayTracer.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricColorArray.h"
@@ -561,6 +562,18 @@ int vtkCatadioptricRayTracer::RequestInformation(
 int vtkCatadioptricRayTracer::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Out of memory (a mesh or an image too large for the memory left): the filter's error.
+  return vtkCatadioptricAllocation::Guard(
+    this, [&] { return this->Execute(inputVector, outputVector); },
+    [&] {
+      return "tracing " + vtkCatadioptricAllocation::DescribeInput(inputVector[1]) + " into " +
+        vtkCatadioptricAllocation::DescribeOutputImage(outputVector);
+    });
+}
+
+int vtkCatadioptricRayTracer::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   this->NumberOfMirrorRays = this->NumberOfTracedRays = 0;
   this->NumberOfHits = this->NumberOfShadowRays = 0;
   vtkCatadioptricCamera* camera = this->ResolveCamera(outputVector->GetInformationObject(0));
@@ -654,7 +667,7 @@ int vtkCatadioptricRayTracer::RequestData(
   {
     vtkNew<vtkTypeInt64Array> visible;
     visible->SetName(vtkCatadioptricArrayNames::VisibleTriangle);
-    visible->SetNumberOfTuples(nPixels);
+    vtkCatadioptricAllocation::Tuples(visible, nPixels);
     output->GetPointData()->AddArray(visible);
     idData = visible->GetPointer(0) + static_cast<std::ptrdiff_t>(width) * (height - 1);
   }
@@ -663,7 +676,7 @@ int vtkCatadioptricRayTracer::RequestData(
   {
     vtkNew<vtkFloatArray> pathLength;
     pathLength->SetName(vtkCatadioptricArrayNames::PathLength);
-    pathLength->SetNumberOfTuples(nPixels);
+    vtkCatadioptricAllocation::Tuples(pathLength, nPixels);
     output->GetPointData()->AddArray(pathLength);
     pathData = pathLength->GetPointer(0) + static_cast<std::ptrdiff_t>(width) * (height - 1);
   }

@@ -144,6 +144,8 @@ protected:
   vtkIdType NumberOfShadowRays = 0;
 
 private:
+  // RequestData's work (RequestData reports running out of memory).
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   vtkCatadioptricRayTracer(const vtkCatadioptricRayTracer&) = delete;
   void operator=(const vtkCatadioptricRayTracer&) = delete;
 

@@ -3,6 +3,7 @@
 #include "Projector.h"
 #include "Rig.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricParallel.h"
@@ -37,11 +38,11 @@ vtkIdType RigToPolyData(const catar::RigGeometry& rig, bool outline, vtkPolyData
   const vtkIdType pointCount = mirrorStart + static_cast<vtkIdType>(rig.mirrorPoints.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(pointCount);
+  vtkCatadioptricAllocation::Points(points, pointCount);
   vtkNew<vtkDoubleArray> normals;
   normals->SetName("Normals");
   normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(pointCount);
+  vtkCatadioptricAllocation::Tuples(normals, pointCount);
   normals->Fill(0.0);
   points->SetPoint(0, rig.centre.data());
   for (std::size_t k = 0; k < rig.border.size(); ++k)
@@ -187,7 +188,7 @@ int vtkCatadioptricRigSource::RequestData(
   const vtkIdType lineCount = geometry->GetNumberOfLines();
   vtkNew<vtkIntArray> parts;
   parts->SetName(vtkCatadioptricArrayNames::RigPart);
-  parts->SetNumberOfTuples(1 + lineCount + polys->GetNumberOfCells());
+  vtkCatadioptricAllocation::Tuples(parts, 1 + lineCount + polys->GetNumberOfCells());
   vtkIdType cell = 0;
   parts->SetValue(cell++, CAMERA_CENTRE);
   for (vtkIdType k = 0; k < lineCount; ++k)

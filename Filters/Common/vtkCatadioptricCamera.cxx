@@ -2,9 +2,11 @@
 
 #include "CalibrationIO.h"
 #include "CameraModel.h"
+#include "Memory.h"
 #include "Mirror.h"
 #include "Projector.h"
 
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricParallel.h"
 #include "vtkDataArray.h"
 #include "vtkDemandDrivenPipeline.h"
@@ -97,7 +99,7 @@ void AddArray(vtkFieldData* fd, const char* name, const double* values, int n)
   vtkNew<vtkDoubleArray> a;
   a->SetName(name);
   a->SetNumberOfComponents(1);
-  a->SetNumberOfTuples(n);
+  vtkCatadioptricAllocation::Tuples(a, n);
   std::copy(values, values + n, a->GetPointer(0));
   fd->RemoveArray(name);
   fd->AddArray(a);
@@ -447,6 +449,24 @@ bool CheckBatch(vtkDataArray* in, int components, std::initializer_list<vtkDataA
   }
   return true;
 }
+
+// Sizes the output arrays of a batch of n (allocate()); false with the sizes in `error` when the
+// memory left does not hold them.
+template<typename Allocate>
+bool AllocateBatch(Allocate&& allocate, vtkIdType n, const std::string& what, std::string& error)
+{
+  try
+  {
+    allocate();
+    return true;
+  }
+  catch (const catar::OutOfMemory& e)
+  {
+    error =
+      what + ": out of memory for the results of " + std::to_string(n) + " points: " + e.what();
+  }
+  return false;
+}
 } // namespace
 
 bool vtkCatadioptricCamera::ProjectWorldPoints(vtkDataArray* points, vtkDoubleArray* pixels,
@@ -467,11 +487,20 @@ bool vtkCatadioptricCamera::ProjectWorldPoints(vtkDataArray* points, vtkDoubleAr
   }
   const vtkIdType n = points->GetNumberOfTuples();
   pixels->SetNumberOfComponents(2);
-  pixels->SetNumberOfTuples(n);
   statuses->SetNumberOfComponents(1);
-  statuses->SetNumberOfTuples(n);
   mirrorPoints->SetNumberOfComponents(3);
-  mirrorPoints->SetNumberOfTuples(n);
+  if (!AllocateBatch(
+        [&] {
+          vtkCatadioptricAllocation::Tuples(pixels, n);
+          vtkCatadioptricAllocation::Tuples(statuses, n);
+          vtkCatadioptricAllocation::Tuples(mirrorPoints, n);
+        },
+        n, "ProjectWorldPoints", error))
+  {
+    this->LastError = error;
+    vtkErrorMacro(<< error);
+    return false;
+  }
   const catar::SolverType type = SolverFromNumber(solver);
   double* pixel = pixels->GetPointer(0);
   int* status = statuses->GetPointer(0);
@@ -509,11 +538,20 @@ bool vtkCatadioptricCamera::BackProjectPixels(
   }
   const vtkIdType n = pixels->GetNumberOfTuples();
   origins->SetNumberOfComponents(3);
-  origins->SetNumberOfTuples(n);
   directions->SetNumberOfComponents(3);
-  directions->SetNumberOfTuples(n);
   statuses->SetNumberOfComponents(1);
-  statuses->SetNumberOfTuples(n);
+  if (!AllocateBatch(
+        [&] {
+          vtkCatadioptricAllocation::Tuples(origins, n);
+          vtkCatadioptricAllocation::Tuples(directions, n);
+          vtkCatadioptricAllocation::Tuples(statuses, n);
+        },
+        n, "BackProjectPixels", error))
+  {
+    this->LastError = error;
+    vtkErrorMacro(<< error);
+    return false;
+  }
   double* origin = origins->GetPointer(0);
   double* direction = directions->GetPointer(0);
   int* status = statuses->GetPointer(0);

@@ -32,6 +32,26 @@ inline std::size_t EditDistance(const std::string& a, const std::string& b)
   }
   return row[b.size()];
 }
+
+/// The candidate closest to `word` by EditDistance (the first of the closest) among those that
+/// close(distance, candidate) accepts, or nullptr. Each caller keeps its own idea of close.
+template<typename Close>
+const std::string* Nearest(
+  const std::string& word, const std::vector<std::string>& candidates, Close close)
+{
+  const std::string* nearest = nullptr;
+  std::size_t best = 0;
+  for (const std::string& candidate : candidates)
+  {
+    const std::size_t d = EditDistance(word, candidate);
+    if ((!nearest || d < best) && close(d, candidate))
+    {
+      best = d;
+      nearest = &candidate;
+    }
+  }
+  return nearest;
+}
 } // namespace catar
 
 #endif

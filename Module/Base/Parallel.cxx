@@ -5,6 +5,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -47,7 +48,16 @@ public:
     const unsigned long generation = this->Generation.load();
     for (int i = 0; i < workers; ++i)
     {
-      this->Threads.emplace_back([this, generation] { this->Work(generation); });
+      try
+      {
+        this->Threads.emplace_back([this, generation] { this->Work(generation); });
+      }
+      catch (const std::system_error&)
+      {
+        // No thread can be started now (no memory left for its stack, or the process's thread
+        // limit): the loops run on the threads there are, the caller's at least.
+        break;
+      }
     }
   }
 

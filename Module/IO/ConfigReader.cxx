@@ -461,17 +461,10 @@ void CheckKeys(const Node& node, const std::vector<std::string>& known)
       continue;
     }
     std::string message = "unknown key '" + key + "'";
-    const std::string* nearest = nullptr;
-    std::size_t best = std::max<std::size_t>(2, key.size() / 3) + 1;
-    for (const std::string& k : known)
-    {
-      const std::size_t d = EditDistance(key, k);
-      if (d < best)
-      {
-        best = d;
-        nearest = &k;
-      }
-    }
+    // Close: at most a third of the key's letters (two at least) edited.
+    const std::size_t limit = std::max<std::size_t>(2, key.size() / 3);
+    const std::string* nearest =
+      Nearest(key, known, [limit](std::size_t d, const std::string&) { return d <= limit; });
     if (nearest)
     {
       message += " (did you mean '" + *nearest + "'?)";

@@ -1,6 +1,7 @@
 #include "MeshFileCheck.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <climits>
 #include <cstdlib>
@@ -651,5 +652,27 @@ bool CheckMeshFile(const std::string& path, std::string& error)
   }
   std::uint64_t size = 0;
   return MeshFileSize(path, size, error);
+}
+double EstimatedMeshTriangles(const std::string& path)
+{
+  std::uint64_t size = 0;
+  std::string error;
+  if (!MeshFileSize(path, size, error))
+  {
+    return 0.0;
+  }
+  const std::string ext = Lower(path.substr(std::min(path.size(), path.rfind('.'))));
+  if (ext == ".stl")
+  {
+    std::ifstream in(path, std::ios::binary);
+    char header[84] = {};
+    const bool binary = in.read(header, sizeof(header)) && std::string(header, 5) != "solid";
+    if (binary)
+    {
+      return size >= 84 ? std::floor(static_cast<double>(size - 84) / 50.0) : 0.0;
+    }
+    return static_cast<double>(size) / 250.0;
+  }
+  return static_cast<double>(size) / (ext == ".obj" ? 40.0 : 20.0);
 }
 } // namespace catar

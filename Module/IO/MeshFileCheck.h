@@ -41,6 +41,12 @@ bool CheckStlFile(const std::string& path, std::string& error);
 /// end inside the connectivity. Implemented in VtpFileCheck.cxx.
 bool CheckVtpFile(const std::string& path, std::string& error);
 
+/// About how many triangles a mesh file holds, from its size and format, for a memory estimate
+/// before it is read: a binary STL's exact count; for other formats the size over a generous
+/// number of bytes a triangle (ASCII STL 250, OBJ 40, PLY and VTK 20), so that the estimate is
+/// low rather than high. 0 when the file cannot be read.
+double EstimatedMeshTriangles(const std::string& path);
+
 /// The check for a file by its extension (.ply, .vtk, .vtp, .stl, .obj; other files only against
 /// kMaxMeshFileBytes). False with a sentence in `error`.
 bool CheckMeshFile(const std::string& path, std::string& error);

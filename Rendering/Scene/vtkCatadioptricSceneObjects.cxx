@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "vtkCallbackCommand.h"
+#include "vtkCatadioptricAllocation.h"
 #include "vtkCatadioptricArrayNames.h"
 #include "vtkCatadioptricCamera.h"
 #include "vtkCatadioptricErrorText.h"
@@ -240,7 +241,7 @@ void Colorize(vtkPolyData* mesh, const catar::SceneObject& o)
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetName(vtkCatadioptricArrayNames::Colors);
   colors->SetNumberOfComponents(4);
-  colors->SetNumberOfTuples(n);
+  vtkCatadioptricAllocation::Tuples(colors, n);
   vtkNew<vtkIdList> ids;
   const unsigned char alpha = static_cast<unsigned char>(std::lround(255.0 * o.opacity));
   for (vtkIdType c = 0; c < n; ++c)
@@ -311,7 +312,7 @@ void BoxTextureCoordinates(vtkPolyData* box, const catar::Vec3& size)
   vtkNew<vtkFloatArray> tc;
   tc->SetName("TCoords");
   tc->SetNumberOfComponents(2);
-  tc->SetNumberOfTuples(box->GetNumberOfPoints());
+  vtkCatadioptricAllocation::Tuples(tc, box->GetNumberOfPoints());
   tc->FillValue(0.0f);
   vtkNew<vtkIdList> ids;
   for (vtkIdType c = 0; c < box->GetNumberOfCells(); ++c)
@@ -347,7 +348,7 @@ vtkSmartPointer<vtkImageData> CheckerTexture()
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(256, 256, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  vtkCatadioptricAllocation::Scalars(image, VTK_UNSIGNED_CHAR, 3);
   unsigned char* p = static_cast<unsigned char*>(image->GetScalarPointer());
   for (int j = 0; j < 256; ++j)
   {
@@ -376,7 +377,7 @@ vtkSmartPointer<vtkImageData> MarkerTexture(const catar::SceneObject& o)
   }
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(side, side, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  vtkCatadioptricAllocation::Scalars(image, VTK_UNSIGNED_CHAR, 3);
   auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
   for (int j = 0; j < side; ++j)
   {

@@ -191,7 +191,8 @@ public:
   const char* GetProgressText();
 
   ///@{
-  /// Every file the loaded scene reads, as resolved: the scene file, the calibration, meshes,
+  /// Every file the loaded scene reads, as resolved: the scene file (first: where it was found
+  /// on the data search path; none for the built-in demo scene), the calibration, meshes,
   /// textures, the background's image, panorama or video (a frame pattern as it is), the
   /// trajectory and the marker board (catar::SceneDescription::InputFiles). None before a
   /// successful LoadScene. An output should be none of them.

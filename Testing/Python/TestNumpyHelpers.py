@@ -119,6 +119,28 @@ for function, bad in ((car.project_points, np.zeros((4, 2))), (car.project_point
         check(str(bad.shape) in str(e), "the message names the shape: %s" % e)
 check(car.project_points(camera, points[0])[0].shape == (1, 2), "one point of 3")
 
+# Out of memory: results that do not fit in what the address-space limit leaves raise MemoryError
+# with their size, and the points are not copied first (VTK's own copy aborted the interpreter).
+# 2 million points (48 MB) with 40 MB left: their results need 88 MB.
+if sys.platform.startswith("linux"):
+    import resource
+
+    many = np.tile(points[:1], (2_000_000, 1))
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    size = int(open("/proc/self/statm").read().split()[0]) * resource.getpagesize()
+    for function, rows in ((car.project_points, many), (car.back_project, many[:, :2])):
+        resource.setrlimit(resource.RLIMIT_AS, (size + 40_000_000, hard))
+        try:
+            function(camera, rows)
+            check(False, "%s of 2000000 rows fitted in 40 MB" % function.__name__)
+        except MemoryError as e:
+            print("%s under a limit: %s" % (function.__name__, e))
+            check("2000000 points" in str(e) and "left under the address-space limit" in str(e),
+                  "%s's MemoryError gives the sizes: %s" % (function.__name__, e))
+        finally:
+            resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+    check(car.project_points(camera, many[:10])[1].shape == (10,), "projection after the limit")
+
 # Poses and 4x4 mirror keys as 4x4 numpy arrays: the same as their 16 numbers row by row.
 pose = np.array([[0.0, -1.0, 0.0, 0.02], [0.0, 0.0, -1.0, 1.0], [1.0, 0.0, 0.0, 0.14],
                  [0.0, 0.0, 0.0, 1.0]])

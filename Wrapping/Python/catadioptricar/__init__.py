@@ -174,6 +174,19 @@ def _vtk_out(kind):
     return vtkDoubleArray() if kind == "double" else vtkIntArray()
 
 
+def _lend(rows):
+    """A VTK array over a contiguous float64 ``N x width`` array, without a copy (VTK's
+    numpy_to_vtk sizes an array of its own first, even when it then lends): the VTK array keeps
+    ``rows`` alive."""
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+
+    array = vtkDoubleArray()
+    array.SetNumberOfComponents(rows.shape[1])
+    array.SetVoidArray(rows.ravel(), rows.size, 1)
+    array._numpy_reference = rows
+    return array
+
+
 def _rows(function, values, width):
     """``values`` as a contiguous float64 ``N x width`` array; one row of ``width`` is ``1 x
     width``. Any other shape (``width x N`` among them) is refused: reshaping it would pair up
@@ -187,6 +200,12 @@ def _rows(function, values, width):
                          % (function, width, width, a.shape,
                             " (transpose it: .T)" if a.ndim == 2 and a.shape[0] == width else ""))
     return np.ascontiguousarray(a)
+
+
+def _raise_batch_error(message):
+    """A batch call's error: MemoryError when the results did not fit (the message gives their
+    size and the memory left), ValueError otherwise."""
+    raise (MemoryError if "out of memory" in message else ValueError)(message)
 
 
 def project_points(camera, points, solver="auto"):
@@ -221,6 +240,8 @@ def project_points(camera, points, solver="auto"):
     ValueError
         ``points`` not ``N x 3`` (a ``3 x N`` array is refused, not reinterpreted), or an
         unknown solver.
+    MemoryError
+        The results do not fit in the memory left (the message gives their size).
 
     Examples
     --------
@@ -232,7 +253,7 @@ def project_points(camera, points, solver="auto"):
     >>> int(statuses[0]) == car.vtkCatadioptricCamera.VALID
     True
     """
-    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
 
     np = _numpy()
     solvers = {"quartic": 0, "iterative": 1, "auto": 2}
@@ -241,13 +262,15 @@ def project_points(camera, points, solver="auto"):
                          % (solver,))
     p = _rows("project_points", points, 3)
     pixels, statuses, mirror = _vtk_out("double"), _vtk_out("int"), _vtk_out("double")
-    if not camera.ProjectWorldPoints(numpy_to_vtk(p, deep=True), pixels, statuses, mirror,
+    # The points are lent to VTK, not copied; the results are numpy views of VTK's arrays (they
+    # keep them alive): no copy of N points is made on either side.
+    if not camera.ProjectWorldPoints(_lend(p), pixels, statuses, mirror,
                                      solvers[solver]):
-        raise ValueError(camera.GetLastError())
+        _raise_batch_error(camera.GetLastError())
     n = p.shape[0]
-    px = vtk_to_numpy(pixels).reshape(n, 2).copy()
-    st = vtk_to_numpy(statuses).reshape(n).copy()
-    mp = vtk_to_numpy(mirror).reshape(n, 3).copy()
+    px = vtk_to_numpy(pixels).reshape(n, 2)
+    st = vtk_to_numpy(statuses).reshape(n)
+    mp = vtk_to_numpy(mirror).reshape(n, 3)
     none = (st != vtkCatadioptricCamera.VALID) & (st != vtkCatadioptricCamera.OUTSIDE_IMAGE)  # noqa: F405
     px[none] = np.nan
     mp[none] = np.nan
@@ -283,17 +306,17 @@ def back_project(camera, pixels):
     >>> round(float((directions ** 2).sum()), 6)
     1.0
     """
-    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
 
     np = _numpy()
     q = _rows("back_project", pixels, 2)
     origins, directions, statuses = _vtk_out("double"), _vtk_out("double"), _vtk_out("int")
-    if not camera.BackProjectPixels(numpy_to_vtk(q, deep=True), origins, directions, statuses):
-        raise ValueError(camera.GetLastError())
+    if not camera.BackProjectPixels(_lend(q), origins, directions, statuses):
+        _raise_batch_error(camera.GetLastError())
     n = q.shape[0]
-    o = vtk_to_numpy(origins).reshape(n, 3).copy()
-    d = vtk_to_numpy(directions).reshape(n, 3).copy()
-    st = vtk_to_numpy(statuses).reshape(n).copy()
+    o = vtk_to_numpy(origins).reshape(n, 3)
+    d = vtk_to_numpy(directions).reshape(n, 3)
+    st = vtk_to_numpy(statuses).reshape(n)
     none = (st != vtkCatadioptricCamera.VALID) & (st != vtkCatadioptricCamera.OUTSIDE_IMAGE)  # noqa: F405
     o[none] = np.nan
     d[none] = np.nan
