@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkCatadioptricCamera);
@@ -450,14 +451,18 @@ bool CheckBatch(vtkDataArray* in, int components, std::initializer_list<vtkDataA
   return true;
 }
 
-// Sizes the output arrays of a batch of n (allocate()); false with the sizes in `error` when the
-// memory left does not hold them.
-template<typename Allocate>
-bool AllocateBatch(Allocate&& allocate, vtkIdType n, const std::string& what, std::string& error)
+// Gives each output array of a batch n tuples of its components; false with the sizes in
+// `error` when the memory left does not hold them.
+bool AllocateBatch(std::initializer_list<std::pair<vtkDataArray*, int>> outputs, vtkIdType n,
+  const std::string& what, std::string& error)
 {
   try
   {
-    allocate();
+    for (const auto& output : outputs)
+    {
+      output.first->SetNumberOfComponents(output.second);
+      vtkCatadioptricAllocation::Tuples(output.first, n);
+    }
     return true;
   }
   catch (const catar::OutOfMemory& e)
@@ -486,16 +491,8 @@ bool vtkCatadioptricCamera::ProjectWorldPoints(vtkDataArray* points, vtkDoubleAr
     return false;
   }
   const vtkIdType n = points->GetNumberOfTuples();
-  pixels->SetNumberOfComponents(2);
-  statuses->SetNumberOfComponents(1);
-  mirrorPoints->SetNumberOfComponents(3);
   if (!AllocateBatch(
-        [&] {
-          vtkCatadioptricAllocation::Tuples(pixels, n);
-          vtkCatadioptricAllocation::Tuples(statuses, n);
-          vtkCatadioptricAllocation::Tuples(mirrorPoints, n);
-        },
-        n, "ProjectWorldPoints", error))
+        { { pixels, 2 }, { statuses, 1 }, { mirrorPoints, 3 } }, n, "ProjectWorldPoints", error))
   {
     this->LastError = error;
     vtkErrorMacro(<< error);
@@ -537,16 +534,8 @@ bool vtkCatadioptricCamera::BackProjectPixels(
     return false;
   }
   const vtkIdType n = pixels->GetNumberOfTuples();
-  origins->SetNumberOfComponents(3);
-  directions->SetNumberOfComponents(3);
-  statuses->SetNumberOfComponents(1);
   if (!AllocateBatch(
-        [&] {
-          vtkCatadioptricAllocation::Tuples(origins, n);
-          vtkCatadioptricAllocation::Tuples(directions, n);
-          vtkCatadioptricAllocation::Tuples(statuses, n);
-        },
-        n, "BackProjectPixels", error))
+        { { origins, 3 }, { directions, 3 }, { statuses, 1 } }, n, "BackProjectPixels", error))
   {
     this->LastError = error;
     vtkErrorMacro(<< error);
