@@ -2,7 +2,7 @@
 # Installs the Debian packages CatadioptricAR needs (ParaView 5.11's SDK with its VTK 9.2, CGAL,
 # Eigen, OpenCV, OpenMesh, GoogleTest, Google Benchmark, Embree, yaml-cpp, OpenGV, Ceres, CLI11,
 # Xvfb; help2man for the manual pages; clang-format and clang-tidy; for the tests, Python's
-# numpy, PIL, yaml and jsonschema).
+# numpy, PIL, yaml and jsonschema, and POV-Ray, the independent renderer of Testing/Independent).
 #   scripts/install-deps.sh               install (runs apt-get update first)
 #   scripts/install-deps.sh --if-missing  do nothing when everything is already installed
 # Never install libvtk9-dev or python3-vtk9: they conflict with paraview-dev.
@@ -13,7 +13,7 @@ packages=(build-essential cmake git pkg-config clang-format clang-tidy
   libcgal-dev libeigen3-dev libopencv-dev libopencv-contrib-dev libopenmesh-dev libgtest-dev
   libbenchmark-dev libembree-dev libyaml-cpp-dev zlib1g-dev liblzma-dev xvfb xauth
   libdouble-conversion-dev liblz4-dev libutfcpp-dev libopenmpi-dev libglew-dev
-  libopengv-dev libceres-dev libcli11-dev help2man
+  libopengv-dev libceres-dev libcli11-dev help2man povray
   python3-numpy python3-pil python3-yaml python3-jsonschema)
 if [[ "${1:-}" == "--if-missing" ]]; then
   missing=0

@@ -1,9 +1,9 @@
 #include "MeshFileCheck.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cctype>
 #include <climits>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
