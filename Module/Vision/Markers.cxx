@@ -249,8 +249,9 @@ bool DetectMarkers(int width, int height, const std::uint8_t* rgba,
   // Bits read from the middle of each cell, sampled finely: a marker seen in the mirror has smooth
   // edges and slightly curved sides, and OpenCV's defaults (4 pixels a cell, 13 % of each cell's
   // side ignored) read its outer cells across the edge. On POV-Ray's anti-aliased frames
-  // (BenchmarkMarkersPovRay, 6 frames of 8 markers) 42 of 48 markers are found clean and 38 with
-  // blur and noise by the defaults, 45 and 43 with these.
+  // (BenchmarkMarkersPovRay, 6 frames of 8 markers) 43 of 48 markers are found clean and 41 with
+  // blur and noise by the defaults, 44 and 43 with these; on the project's own test board
+  // (Markers.FoundThroughTheMirrorWhereTheyProjectAndGiveThePose) 8 of 8 instead of 7.
   parameters->perspectiveRemovePixelPerCell = 10;
   parameters->perspectiveRemoveIgnoredMarginPerCell = 0.3;
   try
