@@ -20,11 +20,13 @@
 #include "ProgramOutput.h"
 #include "RunMain.h"
 #include "SceneDescription.h"
+#include "Trajectory.h"
 #include "VideoIO.h"
 #include "vtkPointData.h"
 #include "vtkTypeInt64Array.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -407,9 +409,69 @@ void Progress(long long done, long long total, double elapsed, bool terminal)
   std::fflush(stderr);
 }
 
+// --poses-out: each rendered frame's camera pose found from its own markers, at the frame's time
+// (frames that kept the previous pose are left out and counted).
+struct FoundPoses
+{
+  std::string path; // "" when not asked for
+  catar::Trajectory trajectory;
+  long long missing = 0;
+
+  void Add(vtkCatadioptricSceneRenderer* renderer, long long frame)
+  {
+    if (this->path.empty())
+    {
+      return;
+    }
+    if (!renderer->GetFramePoseFound())
+    {
+      ++this->missing;
+      return;
+    }
+    double m[16];
+    renderer->GetCamera()->GetWorldToCameraElements(m);
+    catar::TimedPose pose;
+    pose.time = renderer->GetFrameTime(static_cast<int>(frame));
+    for (int i = 0; i < 16; ++i)
+    {
+      pose.worldToCamera(i / 4, i % 4) = m[i];
+    }
+    this->trajectory.poses.push_back(pose);
+  }
+
+  // Writes the TUM file (whole or not at all); false with the reason printed.
+  bool Write() const
+  {
+    if (this->path.empty())
+    {
+      return true;
+    }
+    if (this->trajectory.Empty())
+    {
+      std::fprintf(stderr,
+        "catadioptric-render: --poses-out %s: no frame had a pose from its markers; nothing "
+        "written\n",
+        this->path.c_str());
+      return false;
+    }
+    std::string error;
+    if (!catar::SaveTrajectory(this->path, this->trajectory, "tum", error))
+    {
+      std::fprintf(stderr, "catadioptric-render: --poses-out: %s\n", error.c_str());
+      return false;
+    }
+    if (!Quiet && !Json)
+    {
+      std::printf("wrote the poses of %zu frames to %s (%lld frames without a pose left out)\n",
+        this->trajectory.poses.size(), this->path.c_str(), this->missing);
+    }
+    return true;
+  }
+};
+
 // Renders frames [first, end) of the sequence to a pattern or a video; prints a summary.
 int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& outName,
-  long long first, long long end, double fps)
+  long long first, long long end, double fps, FoundPoses& poses)
 {
   vtkCatadioptricCamera* cam = renderer->GetCamera();
   catar::FrameWriter writer;
@@ -461,6 +523,7 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
     }
     pose += renderer->GetPoseTime();
     poseWorst = std::max(poseWorst, renderer->GetPoseTime());
+    poses.Add(renderer, k);
     const auto e0 = Clock::now();
     if (!writer.Write(k, vtkCatadioptricImageSupport::ToFrame(renderer->GetOutput()), error))
     {
@@ -476,6 +539,10 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
   if (!writer.Finish(error))
   {
     std::fprintf(stderr, "catadioptric-render: %s\n", error.c_str());
+    return 1;
+  }
+  if (!poses.Write())
+  {
     return 1;
   }
   if (!writer.GetNote().empty())
@@ -546,6 +613,7 @@ int Run(int argc, char* argv[])
   std::string frameRange;
   double fps = 0.0;
   std::string markers;
+  FoundPoses poses;
   double adaptive = 0.0;
   int antialiasSamples = 0;
   bool antialias = false, printDemo = false, alpha = false, reference = false;
@@ -580,6 +648,9 @@ int Run(int argc, char* argv[])
   app.add_option("--markers", markers,
     "estimate each frame's camera pose from this board's markers seen in the background "
     "(Documentation/markers.md)");
+  app.add_option("--poses-out", poses.path,
+    "write each frame's camera pose found from its markers to FILE.tum or FILE.txt (TUM: "
+    "time tx ty tz qx qy qz qw, the camera in the world; frames without a pose left out)");
   app
     .add_option("--adaptive", adaptive,
       "split, every frame, the triangles whose edges bend more than P pixels "
@@ -757,6 +828,26 @@ int Run(int argc, char* argv[])
     scene = renderer->GetInputFile(0); // where it was found
   }
 
+  if (!poses.path.empty())
+  {
+    std::string ext = poses.path.substr(std::min(poses.path.size(), poses.path.rfind('.')));
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+      [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext != ".tum" && ext != ".txt")
+    {
+      std::fprintf(
+        stderr, "%s: --poses-out writes a TUM trajectory, FILE.tum or FILE.txt\n", kProgram);
+      return 2;
+    }
+    if (!renderer->GetUsesMarkers())
+    {
+      std::fprintf(stderr,
+        "%s: --poses-out needs poses from markers: give --markers BOARD or the scene's "
+        "'markers'\n",
+        kProgram);
+      return 2;
+    }
+  }
   const long long frames = renderer->GetNumberOfFrames();
   if (*renderer->GetSequenceNote() && !Quiet)
   {
@@ -776,7 +867,8 @@ int Run(int argc, char* argv[])
     const catar::FileIdentities inputs = InputIdentities(renderer, scene, markers);
     std::string which;
     for (const auto& output : { std::make_pair("-o", outName), std::make_pair("--mask", maskName),
-           std::make_pair("--ids", idsName), std::make_pair("--depth", depthName) })
+           std::make_pair("--ids", idsName), std::make_pair("--depth", depthName),
+           std::make_pair("--poses-out", poses.path) })
     {
       if (IsAnInput(inputs, output.second, first, end, which))
       {
@@ -807,7 +899,7 @@ int Run(int argc, char* argv[])
   if (sequence)
   {
     return RenderSequence(
-      renderer, outName, first, end, fps > 0.0 ? fps : renderer->GetFrameRate());
+      renderer, outName, first, end, fps > 0.0 ? fps : renderer->GetFrameRate(), poses);
   }
   if (frames > 1 && end - first > 1 && !Quiet)
   {
@@ -843,6 +935,7 @@ int Run(int argc, char* argv[])
     poseTimes.push_back(renderer->GetFramePoseTime());
     frameTimes.push_back(renderer->GetFrameTime());
   }
+  poses.Add(renderer, first);
   // A stage's time: the load's own, or the median of the frames timed (all but the first).
   const std::size_t timedFrom = repeat > 1 ? 1 : 0;
   const auto median = [timedFrom](const std::vector<double>& all) {
@@ -867,7 +960,7 @@ int Run(int argc, char* argv[])
     return 1;
   }
   if (!WriteMaskAndIds(renderer->GetOutput(), maskName, idsName) ||
-    !WriteDepth(renderer->GetOutput(), depthName))
+    !WriteDepth(renderer->GetOutput(), depthName) || !poses.Write())
   {
     return 1;
   }

@@ -291,6 +291,7 @@ struct vtkCatadioptricSceneRenderer::Internals
   double PoseTime = 0.0;
   std::string PoseReport;
   int PoseFailures = 0;
+  bool PoseFound = false; // the last estimation's
   // Work of ApplyFrame that belongs to the next Render()'s frame: decoding the background's
   // frame (counted in the background stage) and estimating the pose from markers; and the pose
   // time of the last Render() (0 when it estimated none).
@@ -318,6 +319,7 @@ void vtkCatadioptricSceneRenderer::Internals::EstimatePose(const catar::Frame& f
     pose = catar::PoseFromMarkers(this->Camera->GetModel(), this->Board, found);
   }
   this->PoseTime = Seconds(start, Clock::now());
+  this->PoseFound = pose.ok;
   std::ostringstream report;
   if (pose.ok)
   {
@@ -519,6 +521,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     : scene.markerBoardFile;
   in.UseMarkers = !boardFile.empty();
   in.PoseFailures = 0;
+  in.PoseFound = false;
   in.PoseReport.clear();
   in.PoseTime = 0.0;
   if (in.UseMarkers)
@@ -956,6 +959,16 @@ const char* vtkCatadioptricSceneRenderer::GetPoseReport()
 int vtkCatadioptricSceneRenderer::GetNumberOfPoseFailures()
 {
   return this->Internal->PoseFailures;
+}
+
+bool vtkCatadioptricSceneRenderer::GetUsesMarkers()
+{
+  return this->Internal->Loaded && this->Internal->UseMarkers;
+}
+
+bool vtkCatadioptricSceneRenderer::GetFramePoseFound()
+{
+  return this->Internal->UseMarkers && this->Internal->PoseFound;
 }
 
 int vtkCatadioptricSceneRenderer::GetNumberOfFrames()

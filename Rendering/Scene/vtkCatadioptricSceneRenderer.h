@@ -170,6 +170,10 @@ public:
   double GetPoseTime();
   const char* GetPoseReport();
   int GetNumberOfPoseFailures();
+  /// Whether the loaded scene estimates its poses from markers, and whether the last rendered
+  /// frame's pose was found from that frame's own markers (false: it kept the previous one).
+  bool GetUsesMarkers();
+  bool GetFramePoseFound();
   double GetFrameTime(int frame);
   double GetFrameRate();
   const char* GetSequenceNote();

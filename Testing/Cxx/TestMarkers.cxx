@@ -10,6 +10,7 @@
 
 #include "Markers.h"
 #include "Projector.h"
+#include "TestPrograms.h"
 #include "Trajectory.h"
 #include "VideoIO.h"
 
@@ -284,6 +285,31 @@ objects:
   EXPECT_EQ(r->GetNumberOfPoseFailures(), 0);
   EXPECT_LT(worstMetres, 0.01);
   EXPECT_LT(worstDegrees, 0.5);
+
+  // The same poses written by the program (--poses-out) and read back: every frame of 0 to 19,
+  // at its time, within the same bounds of the truth.
+  const catar_test::ProgramRun run = catar_test::RunProgram(CATAR_RENDER_PROGRAM,
+    "'" + dir + "/estimate.yaml' -o '" + dir + "/out_%03d.png' --frames 0:20 --poses-out '" + dir +
+      "/found.tum'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("wrote the poses of 20 frames to"), std::string::npos) << run.output;
+  catar::Trajectory found;
+  ASSERT_TRUE(catar::LoadTrajectory(dir + "/found.tum", found, error)) << error;
+  ASSERT_EQ(found.poses.size(), 20u);
+  for (int k = 0; k < 20; ++k)
+  {
+    EXPECT_NEAR(found.poses[k].time, k / 30.0, 1e-9);
+    double metres = 0.0, degrees = 0.0;
+    PoseError(found.poses[k].worldToCamera, truth.poses[k].worldToCamera, metres, degrees);
+    EXPECT_LT(metres, 0.01) << "frame " << k;
+    EXPECT_LT(degrees, 0.5) << "frame " << k;
+  }
+  // Without markers there is nothing to write: refused before rendering.
+  const catar_test::ProgramRun none = catar_test::RunProgram(CATAR_RENDER_PROGRAM,
+    "'" + dir + "/render.yaml' -o '" + dir + "/plain.png' --poses-out '" + dir + "/none.tum'");
+  EXPECT_EQ(none.status, 2) << none.output;
+  EXPECT_NE(none.output.find("--poses-out needs poses from markers"), std::string::npos)
+    << none.output;
 }
 
 // How small a marker may be and still be found through the mirror: one marker on the floor, of
