@@ -19,6 +19,7 @@
 #include <cstring>
 #include <new>
 #include <sstream>
+#include <string>
 
 namespace
 {
@@ -33,10 +34,25 @@ std::string Describe(vtkAbstractArray* a, double values)
   return s.str();
 }
 
-// Gives `a` room for n tuples, the first `kept` values kept (kept < 0: all, as Resize). VTK's
-// own allocation is not used for arrays of its standard layout: the Debian build aborts the
-// program when one fails (it is built without NDEBUG). Their values are allocated here and
-// handed to the array, which frees them; a failure throws catar::OutOfMemory.
+// Arrays from this size on are compared with the memory left before they are allocated: where
+// the system overcommits, their allocation would succeed and the process be killed later. Reading
+// what is left costs tens of microseconds (three small files), too much for every array of every
+// frame; a smaller allocation that fails shows as malloc's null.
+constexpr double kCheckedBytes = 16.0 * 1024.0 * 1024.0;
+
+// "(430 MB left under the address-space limit (ulimit -v 900000))", or "" when unbounded.
+std::string Left()
+{
+  const catar::MemoryHeadroom headroom = catar::AvailableMemory();
+  return headroom.bound.empty()
+    ? std::string()
+    : " (" + catar::FormatBytes(headroom.bytes) + " left under " + headroom.bound + ")";
+}
+
+// Gives `a` room for n tuples, its first values kept when `keep` (as Resize). VTK's own
+// allocation is not used for arrays of its standard layout: the Debian build aborts the program
+// when one fails (it is built without NDEBUG). Their values are allocated here and handed to the
+// array, which frees them; a failure throws catar::OutOfMemory.
 void Allocate(vtkAbstractArray* a, vtkIdType n, bool keep)
 {
   const double values = static_cast<double>(n) * a->GetNumberOfComponents();
@@ -46,11 +62,14 @@ void Allocate(vtkAbstractArray* a, vtkIdType n, bool keep)
     return;
   }
   const double bytes = values * a->GetDataTypeSize();
-  const catar::MemoryHeadroom headroom = catar::AvailableMemory();
-  if (bytes > headroom.bytes)
+  if (bytes >= kCheckedBytes)
   {
-    throw catar::OutOfMemory(Describe(a, values) + " do not fit in the " +
-      catar::FormatBytes(headroom.bytes) + " left under " + headroom.bound);
+    const catar::MemoryHeadroom headroom = catar::AvailableMemory();
+    if (bytes > headroom.bytes)
+    {
+      throw catar::OutOfMemory(Describe(a, values) + " do not fit in the " +
+        catar::FormatBytes(headroom.bytes) + " left under " + headroom.bound);
+    }
   }
   if (a->GetArrayType() != vtkAbstractArray::AoSDataArrayTemplate)
   {
@@ -65,7 +84,7 @@ void Allocate(vtkAbstractArray* a, vtkIdType n, bool keep)
   void* memory = std::malloc(std::max<std::size_t>(size, 1));
   if (!memory)
   {
-    throw catar::OutOfMemory(Describe(a, values) + " could not be allocated");
+    throw catar::OutOfMemory(Describe(a, values) + " could not be allocated" + Left());
   }
   if (keep && a->GetNumberOfValues() > 0)
   {
