@@ -34,6 +34,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -239,8 +240,9 @@ struct vtkCatadioptricSceneRenderer::Internals
   // compositor) when UseReference.
   vtkNew<vtkCatadioptricRayTracer> Tracer;
   bool UseReference = false;
-  // The last error of a stage's filter (they report to this observer, not to the output
-  // window): a failed stage's error is the renderer's, said once, with its own words.
+  // The last error of a stage's filter, kept and passed on to the output window as VTK would
+  // (an error that does not fail the stage is still seen): a failed stage's error is the
+  // renderer's, in the stage's own words (the programs print the two identical lines once).
   std::string StageError;
   vtkNew<vtkCallbackCommand> StageErrors;
   void Observe(vtkObject* stage)
@@ -256,6 +258,7 @@ struct vtkCatadioptricSceneRenderer::Internals
     {
       static_cast<Internals*>(clientData)->StageError =
         vtkCatadioptricErrorText::Short(static_cast<const char*>(callData));
+      vtkOutputWindowDisplayErrorText(static_cast<const char*>(callData));
     }
   }
   // Progress of long work, passed on as the renderer's ProgressEvent.
