@@ -40,15 +40,6 @@ std::string Describe(vtkAbstractArray* a, double values)
 // frame; a smaller allocation that fails shows as malloc's null.
 constexpr double kCheckedBytes = 16.0 * 1024.0 * 1024.0;
 
-// "(430 MB left under the address-space limit (ulimit -v 900000))", or "" when unbounded.
-std::string Left()
-{
-  const catar::MemoryHeadroom headroom = catar::AvailableMemory();
-  return headroom.bound.empty()
-    ? std::string()
-    : " (" + catar::FormatBytes(headroom.bytes) + " left under " + headroom.bound + ")";
-}
-
 // Gives `a` room for n tuples, its first values kept when `keep` (as Resize). VTK's own
 // allocation is not used for arrays of its standard layout: the Debian build aborts the program
 // when one fails (it is built without NDEBUG). Their values are allocated here and handed to the
@@ -84,7 +75,8 @@ void Allocate(vtkAbstractArray* a, vtkIdType n, bool keep)
   void* memory = std::malloc(std::max<std::size_t>(size, 1));
   if (!memory)
   {
-    throw catar::OutOfMemory(Describe(a, values) + " could not be allocated" + Left());
+    throw catar::OutOfMemory(
+      Describe(a, values) + " could not be allocated" + catar::MemoryLeftText());
   }
   if (keep && a->GetNumberOfValues() > 0)
   {

@@ -143,14 +143,15 @@ void RequireMemory(double bytes, const std::string& what)
   }
 }
 
-std::string OutOfMemoryWhile(const std::string& what)
+std::string MemoryLeftText()
 {
   const MemoryHeadroom h = AvailableMemory();
-  std::string m = "out of memory while " + what;
-  if (std::isfinite(h.bytes))
-  {
-    m += " (" + FormatBytes(h.bytes) + " left under " + h.bound + ")";
-  }
-  return m;
+  return std::isfinite(h.bytes) ? " (" + FormatBytes(h.bytes) + " left under " + h.bound + ")"
+                                : std::string();
+}
+
+std::string OutOfMemoryWhile(const std::string& what)
+{
+  return "out of memory while " + what + MemoryLeftText();
 }
 } // namespace catar

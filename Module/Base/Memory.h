@@ -42,6 +42,10 @@ std::string FormatBytes(double bytes);
 /// AvailableMemory() leaves. `what` names the stage and its sizes.
 void RequireMemory(double bytes, const std::string& what);
 
+/// " (430 MB left under the address-space limit (ulimit -v 900000))" from AvailableMemory(), or
+/// "" when nothing bounds it: what an allocation that failed had left.
+std::string MemoryLeftText();
+
 /// The message for a std::bad_alloc caught while doing `what`: "out of memory while WHAT"
 /// and, when known, what is left ("; 430 MB is left under ...").
 std::string OutOfMemoryWhile(const std::string& what);
