@@ -282,6 +282,7 @@ PoseResult PoseFromMarkers(const CameraModel& camera, const MarkerBoard& board,
   const std::vector<MarkerDetection>& detections, const PoseOptions& options)
 {
   std::vector<PoseObservation> observations;
+  std::vector<int> observationMarker; // the board marker of each observation
   for (const MarkerDetection& d : detections)
   {
     for (const BoardMarker& m : board.markers)
@@ -294,6 +295,7 @@ PoseResult PoseFromMarkers(const CameraModel& camera, const MarkerBoard& board,
       for (int c = 0; c < 4; ++c)
       {
         observations.push_back({ d.corners[c], world[c] });
+        observationMarker.push_back(m.id);
       }
     }
   }
@@ -305,6 +307,27 @@ PoseResult PoseFromMarkers(const CameraModel& camera, const MarkerBoard& board,
       : "none of the " + std::to_string(detections.size()) + " markers found is on the board";
     return r;
   }
-  return EstimatePose(camera, observations, options);
+  PoseResult result = EstimatePose(camera, observations, options);
+  if (result.ok && !options.allowSingleMarker)
+  {
+    // The markers with an inlier corner.
+    std::set<int> markers;
+    for (std::size_t i = 0; i < result.inliers.size(); ++i)
+    {
+      if (result.inliers[i])
+      {
+        markers.insert(observationMarker[i]);
+      }
+    }
+    if (markers.size() < 2)
+    {
+      result.reliable = false;
+      result.warning = "one marker alone (id " + std::to_string(*markers.begin()) +
+        "): its four corners through the mirror fit poses centimetres apart nearly equally well "
+        "(allowed with allowSingleMarker)" +
+        (result.warning.empty() ? std::string() : "; " + result.warning);
+    }
+  }
+  return result;
 }
 } // namespace catar

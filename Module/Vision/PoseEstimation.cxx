@@ -1,5 +1,6 @@
 #include "PoseEstimation.h"
 
+#include "PoseUncertainty.h"
 #include "Projector.h"
 
 #include <ceres/ceres.h>
@@ -57,6 +58,13 @@ std::string CheckOptions(const PoseOptions& o)
   if (o.maxIterations < 1)
   {
     return "the RANSAC iteration count must be at least 1";
+  }
+  if (!(o.minimumPixelSigma >= 0.0 && std::isfinite(o.minimumPixelSigma)) ||
+    !(o.maxPositionSigma > 0.0) || !(o.maxAngleSigmaDegrees > 0.0) ||
+    !(o.minInlierFraction >= 0.0 && o.minInlierFraction <= 1.0))
+  {
+    return "the guards' bounds must be positive (the pixel sigma's floor at least 0, the inlier "
+           "fraction from 0 to 1)";
   }
   if (!(o.confidence > 0.0 && o.confidence < 1.0))
   {
@@ -565,6 +573,32 @@ std::string CheckRays(const Rays& rays, std::size_t total)
   }
   return std::string();
 }
+// "" when a pose found passes the guards, else why not, with the numbers.
+std::string PoseWarning(const PoseResult& r, std::size_t observations, const PoseOptions& options)
+{
+  std::ostringstream s;
+  const PoseUncertainty& u = r.uncertainty;
+  if (static_cast<double>(r.inlierCount) <
+    options.minInlierFraction * static_cast<double>(observations))
+  {
+    s << "only " << r.inlierCount << " of " << observations
+      << " observations fit the pose (fewer than " << 100.0 * options.minInlierFraction
+      << "%): the points do not match their world positions";
+  }
+  else if (!u.known)
+  {
+    s << "the pixels do not fix the pose (the pose's Jacobian is singular)";
+  }
+  else if (u.positionSigma > options.maxPositionSigma ||
+    u.angleSigmaDegrees > options.maxAngleSigmaDegrees)
+  {
+    s.precision(2);
+    s << "the pose is uncertain: one sigma " << 1000.0 * u.positionSigma << " mm and "
+      << u.angleSigmaDegrees << " degrees (bounds " << 1000.0 * options.maxPositionSigma << " mm, "
+      << options.maxAngleSigmaDegrees << " degrees; pixel noise " << u.pixelSigma << " px)";
+  }
+  return s.str();
+}
 } // namespace
 
 PoseResult EstimatePose(const CameraModel& camera, const std::vector<PoseObservation>& observations,
@@ -608,6 +642,10 @@ PoseResult EstimatePose(const CameraModel& camera, const std::vector<PoseObserva
   result.ok = true;
   result.worldToCamera = pose;
   result.rmsPixels = std::sqrt(SumSquares(errors, result.inliers) / result.inlierCount);
+  result.uncertainty = EstimatePoseUncertainty(
+    projector, observations, result.inliers, pose, options.minimumPixelSigma);
+  result.warning = PoseWarning(result, observations.size(), options);
+  result.reliable = result.warning.empty();
   return result;
 }
 } // namespace catar

@@ -31,6 +31,29 @@ struct PoseOptions
   double confidence = 0.999;    ///< RANSAC: probability of drawing one all-inlier sample
   unsigned seed = 0;            ///< RANSAC is deterministic for a given seed
   bool refine = true;           ///< Ceres refinement of the pixel reprojection error
+
+  // The guards (PoseResult::reliable). A pose that passes RANSAC is still flagged unreliable
+  // when one of these fails; Documentation/markers.md says how they were measured.
+  double minimumPixelSigma = 0.5;    ///< px: the floor of the pixels' noise in the uncertainty
+  double maxPositionSigma = 0.008;   ///< m: the camera centre's one-sigma bound
+  double maxAngleSigmaDegrees = 0.4; ///< the camera rotation's one-sigma bound
+  double minInlierFraction = 0.5;    ///< inliers of all observations, at least
+  /// PoseFromMarkers: a pose from one marker alone may be reliable (its four corners through a
+  /// mirror are nearly ambiguous: off by 5-17 cm with every corner fitting within 0.4 px).
+  bool allowSingleMarker = false;
+};
+
+/// How well a pose is known (PoseUncertainty.h): one sigma, from the pixel residuals' Jacobian.
+struct PoseUncertainty
+{
+  /// False when the pixels do not fix the pose (J^T J singular, or a point with no image at the
+  /// pose): then every sigma is infinite.
+  bool known = false;
+  double pixelSigma = 0.0;        ///< px: the noise used (estimated, at least the floor)
+  double positionSigma = 0.0;     ///< m: the camera centre's error, worst direction
+  double angleSigmaDegrees = 0.0; ///< the camera's rotation, worst axis
+  /// (camera rotation about world axes [rad]; camera centre in the world [m]), 6 x 6
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 struct PoseResult
@@ -40,7 +63,11 @@ struct PoseResult
   Mat4 worldToCamera = Mat4::Identity();
   std::vector<unsigned char> inliers; ///< per observation (1: inlier); empty when !ok
   int inlierCount = 0;
-  double rmsPixels = 0.0; ///< over the inliers, through the mirror (forward projection)
+  double rmsPixels = 0.0;      ///< over the inliers, through the mirror (forward projection)
+  PoseUncertainty uncertainty; ///< when ok
+  /// ok, and no guard of PoseOptions flags it; else `warning` says which and with what numbers.
+  bool reliable = false;
+  std::string warning;
 };
 
 /// The world-to-camera pose from pixel observations of known world points (at least 4 whose pixels
@@ -48,6 +75,8 @@ struct PoseResult
 /// Refused with a sentence in `error` (never NaN in the result): an invalid camera, non-finite
 /// input (the first bad row named), fewer than 4 usable observations, (nearly) collinear world
 /// points, nearly parallel reflected rays, or no pose that RANSAC finds with 4 inliers or more.
+/// A pose found is flagged unreliable (ok, !reliable, a warning) when its uncertainty exceeds
+/// the options' bounds or its inliers are fewer than minInlierFraction of the observations.
 PoseResult EstimatePose(const CameraModel& camera, const std::vector<PoseObservation>& observations,
   const PoseOptions& options = {});
 } // namespace catar

@@ -9,6 +9,7 @@
 // tests hold what is reached).
 //   BenchmarkMarkersPovRay [--frames N] [--keep DIR] [--quick]
 #include "CameraModel.h"
+#include "MarkerFrameScenes.h"
 #include "Markers.h"
 #include "PovRayMarkerFrames.h"
 #include "Projector.h"
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -30,37 +32,7 @@
 
 namespace
 {
-catar::CameraModel DemoCamera()
-{
-  catar::CameraModel m;
-  m.intrinsics = catar::Intrinsics{ 1000.0, 1000.0, 663.5, 523.5, 0.0, 1328, 1048 };
-  m.mirror = catar::MirrorDescription("sphere", { 0.0, 0.0, 0.14, 0.05 });
-  m.worldToCamera << 1, 0, 0, 0, 0, 0, -1, 1, 0, 1, 0, 0.14, 0, 0, 0, 1;
-  return m;
-}
-
-// Eight 20 cm markers on the floor behind the camera (as TestMarkers' board), the whole board
-// turned by `turn` degrees about the vertical through (0, -0.5) and moved by (dx, dy).
-catar::MarkerBoard Board(double turn, double dx, double dy)
-{
-  catar::MarkerBoard board;
-  const double xy[8][2] = { { -0.45, -0.5 }, { 0.0, -0.5 }, { 0.45, -0.5 }, { -0.45, -0.95 },
-    { 0.0, -0.95 }, { 0.45, -0.95 }, { -0.45, -0.05 }, { 0.45, -0.05 } };
-  const double a = turn * 3.14159265358979323846 / 180.0;
-  for (int k = 0; k < 8; ++k)
-  {
-    const double x = xy[k][0];
-    const double y = xy[k][1] + 0.5;
-    catar::BoardMarker m;
-    m.id = k;
-    m.translate = catar::Vec3(
-      std::cos(a) * x - std::sin(a) * y + dx, std::sin(a) * x + std::cos(a) * y - 0.5 + dy, 0.002);
-    m.size = 0.2;
-    m.rotate = catar::Vec3(0, 0, 10.0 * k + turn);
-    board.markers.push_back(m);
-  }
-  return board;
-}
+using namespace catar_independent;
 
 // Shorter side (pixels) of each marker's image in the id mask (red k + 1 for marker k).
 std::map<int, double> VisibleSizes(const cv::Mat& mask)
@@ -87,14 +59,6 @@ std::map<int, double> VisibleSizes(const cv::Mat& mask)
     }
   }
   return sizes;
-}
-
-// RGBA8 pixels of a BGR image.
-std::vector<std::uint8_t> Rgba(const cv::Mat& bgr)
-{
-  cv::Mat rgba;
-  cv::cvtColor(bgr, rgba, cv::COLOR_BGR2RGBA);
-  return std::vector<std::uint8_t>(rgba.data, rgba.data + rgba.total() * 4);
 }
 
 // The corners found against the board's corners projected through the camera (the project's
@@ -136,16 +100,81 @@ void CornerOffsets(const catar::CameraModel& camera, const catar::MarkerBoard& b
   rms = n > 0 ? std::sqrt(sumSquares / n) : NAN;
 }
 
-// Camera centre (world) and rotation angle between two world-to-camera poses.
-void PoseError(const catar::Mat4& a, const catar::Mat4& b, double& mm, double& degrees)
+// The guards (PoseResult::reliable) on poses from parts of the frame's markers, and from a board
+// whose marker size is wrong: how many were reported reliable, and how far off those were.
+struct GuardStats
 {
-  const catar::Mat3 ra = a.topLeftCorner<3, 3>();
-  const catar::Mat3 rb = b.topLeftCorner<3, 3>();
-  const catar::Vec3 ca = -ra.transpose() * a.topRightCorner<3, 1>();
-  const catar::Vec3 cb = -rb.transpose() * b.topRightCorner<3, 1>();
-  mm = 1000.0 * (ca - cb).norm();
-  const double c = std::max(-1.0, std::min(1.0, 0.5 * ((ra * rb.transpose()).trace() - 1.0)));
-  degrees = std::acos(c) * 180.0 / 3.14159265358979323846;
+  int tried = 0;
+  int reliable = 0;
+  int reliableBad = 0; // reliable, yet more than 2 cm or 1 degree off
+  double worstMm = 0.0;
+  double worstDegrees = 0.0;
+  int flaggedBad = 0;  // flagged, and more than 2 cm or 1 degree off
+  int flaggedGood = 0; // flagged, yet within 2 cm and 1 degree
+  int refused = 0;
+
+  void Add(const catar::PoseResult& pose, const catar::Mat4& truth)
+  {
+    ++this->tried;
+    if (!pose.ok)
+    {
+      ++this->refused;
+      return;
+    }
+    double mm = 0.0;
+    double degrees = 0.0;
+    PoseError(pose.worldToCamera, truth, mm, degrees);
+    const bool bad = mm > 20.0 || degrees > 1.0;
+    if (pose.reliable)
+    {
+      ++this->reliable;
+      this->reliableBad += bad ? 1 : 0;
+      this->worstMm = std::max(this->worstMm, mm);
+      this->worstDegrees = std::max(this->worstDegrees, degrees);
+    }
+    else
+    {
+      this->flaggedBad += bad ? 1 : 0;
+      this->flaggedGood += bad ? 0 : 1;
+    }
+  }
+};
+
+std::vector<catar::MarkerDetection> Only(
+  const std::vector<catar::MarkerDetection>& found, std::initializer_list<std::size_t> which)
+{
+  std::vector<catar::MarkerDetection> part;
+  for (std::size_t k : which)
+  {
+    part.push_back(found[k]);
+  }
+  return part;
+}
+
+void TryGuards(const catar::CameraModel& camera, const catar::MarkerBoard& board,
+  const std::vector<catar::MarkerDetection>& found, std::map<std::string, GuardStats>& stats)
+{
+  for (std::size_t i = 0; i < found.size(); ++i)
+  {
+    stats["one marker"].Add(
+      catar::PoseFromMarkers(camera, board, Only(found, { i })), camera.worldToCamera);
+    for (std::size_t j = i + 1; j < found.size(); ++j)
+    {
+      const catar::PoseResult pose = catar::PoseFromMarkers(camera, board, Only(found, { i, j }));
+      stats["two markers of the board"].Add(pose, camera.worldToCamera);
+    }
+  }
+  if (found.size() >= 2)
+  {
+    stats["board size x1.25"].Add(
+      catar::PoseFromMarkers(camera, ResizedBoard(board, 1.25), found), camera.worldToCamera);
+    stats["board size x0.8"].Add(
+      catar::PoseFromMarkers(camera, ResizedBoard(board, 0.8), found), camera.worldToCamera);
+    stats["board size x1.1"].Add(
+      catar::PoseFromMarkers(camera, ResizedBoard(board, 1.1), found), camera.worldToCamera);
+    stats["board size x0.9"].Add(
+      catar::PoseFromMarkers(camera, ResizedBoard(board, 0.9), found), camera.worldToCamera);
+  }
 }
 } // namespace
 
@@ -181,15 +210,17 @@ int main(int argc, char** argv)
   }
   char folder[] = "/tmp/catar-povray-XXXXXX";
   const std::string dir = keep.empty() ? std::string(mkdtemp(folder)) : keep;
-  const catar::CameraModel camera = DemoCamera();
+  const catar::CameraModel camera = DemoMarkerCamera();
   std::printf("Eight 20 cm markers on the floor through the demo mirror, rendered by POV-Ray "
               "(anti-aliased); 'noisy': blur sigma 1 px, noise sigma 6.\n");
-  std::printf("%5s %6s %8s %7s %11s %9s %9s %8s %9s  %s\n", "frame", "kind", "visible", "found",
-    "corners px", "pose mm", "pose deg", "inliers", "detect ms", "missed (shorter side, px)");
+  std::printf("%5s %6s %8s %7s %11s %9s %9s %13s %8s %9s  %s\n", "frame", "kind", "visible",
+    "found", "corners px", "pose mm", "pose deg", "sigma mm/deg", "inliers", "detect ms",
+    "missed (shorter side, px)");
+  std::map<std::string, GuardStats> guards;
   int status = 0;
   for (int f = 0; f < frames; ++f)
   {
-    const catar::MarkerBoard board = Board(13.0 * f, 0.03 * f, -0.02 * f);
+    const catar::MarkerBoard board = EightMarkerBoard(13.0 * f, 0.03 * f, -0.02 * f);
     std::string image;
     std::string mask;
     std::string error;
@@ -202,19 +233,12 @@ int main(int argc, char** argv)
     }
     const std::map<int, double> sizes = VisibleSizes(cv::imread(mask, cv::IMREAD_COLOR));
     const cv::Mat clean = cv::imread(image, cv::IMREAD_COLOR);
-    cv::Mat noisy;
-    cv::GaussianBlur(clean, noisy, cv::Size(0, 0), 1.0);
-    cv::Mat noise(noisy.size(), CV_32FC3);
-    cv::RNG rng(static_cast<std::uint64_t>(f + 1));
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, 6.0);
-    noisy.convertTo(noisy, CV_32FC3);
-    noisy += noise;
-    noisy.convertTo(noisy, CV_8UC3);
+    const cv::Mat noisy = LensBlurAndNoise(clean, 1.0, 6.0, static_cast<std::uint64_t>(f) + 1);
     const std::pair<const char*, const cv::Mat*> kinds[] = { { "clean", &clean },
       { "noisy", &noisy } };
     for (const auto& kind : kinds)
     {
-      const std::vector<std::uint8_t> rgba = Rgba(*kind.second);
+      const std::vector<std::uint8_t> rgba = RgbaPixels(*kind.second);
       std::vector<catar::MarkerDetection> found;
       const auto start = std::chrono::steady_clock::now();
       if (!catar::DetectMarkers(camera.intrinsics.width, camera.intrinsics.height, rgba.data(),
@@ -254,20 +278,65 @@ int main(int argc, char** argv)
       double outward = NAN;
       double rms = NAN;
       CornerOffsets(camera, board, found, outward, rms);
-      std::printf("%5d %6s %8d %3d/%-3d %5.2f/%-5.2f %9.2f %9.3f %4d/%-3d %9.1f %s\n", f,
+      std::printf(
+        "%5d %6s %8d %3d/%-3d %5.2f/%-5.2f %9.2f %9.3f %6.2f/%-5.3f%s %4d/%-3d %9.1f %s\n", f,
         kind.first, visible, foundVisible, static_cast<int>(found.size()), outward, rms, mm,
-        degrees, pose.inlierCount, static_cast<int>(4 * found.size()), ms,
+        degrees, 1000.0 * pose.uncertainty.positionSigma, pose.uncertainty.angleSigmaDegrees,
+        pose.reliable ? " " : "!", pose.inlierCount, static_cast<int>(4 * found.size()), ms,
         missed.empty() ? " -" : missed.c_str());
+      guards[std::string("all markers, ") + kind.first].Add(pose, camera.worldToCamera);
+      TryGuards(camera, board, found, guards);
       if (kind.second == &noisy && !keep.empty())
       {
         cv::imwrite(dir + "/" + name + "-noisy.png", noisy);
       }
     }
   }
+  // Two markers side by side, alone in the frame.
+  for (int f = 0; f < std::min(frames, 3); ++f)
+  {
+    const catar::MarkerBoard pair = MarkerPair(0.22 + 0.02 * f, -0.45 - 0.2 * f);
+    std::string image;
+    std::string error;
+    const std::string name = "pair-" + std::to_string(f);
+    if (!catar_independent::RenderMarkerFrame(dir, name, camera, pair, false, image, error))
+    {
+      std::fprintf(stderr, "BenchmarkMarkersPovRay: %s\n", error.c_str());
+      return 1;
+    }
+    const cv::Mat clean = cv::imread(image, cv::IMREAD_COLOR);
+    for (const cv::Mat& frame :
+      { clean, LensBlurAndNoise(clean, 1.0, 6.0, static_cast<std::uint64_t>(f) + 1) })
+    {
+      const std::vector<std::uint8_t> rgba = RgbaPixels(frame);
+      std::vector<catar::MarkerDetection> found;
+      catar::DetectMarkers(camera.intrinsics.width, camera.intrinsics.height, rgba.data(),
+        pair.dictionary, true, found, error);
+      if (found.size() == 2)
+      {
+        guards["two markers side by side"].Add(
+          catar::PoseFromMarkers(camera, pair, found), camera.worldToCamera);
+      }
+    }
+  }
+  std::printf("\nThe guards ('!' above: flagged unreliable): poses from parts of each frame's "
+              "markers, and from a board whose marker size is wrong; 'bad': more than 2 cm or 1 "
+              "degree off.\n");
+  std::printf("%-26s %6s %9s %13s %20s %13s %8s\n", "poses from", "tried", "reliable",
+    "reliable bad", "reliable worst", "flagged bad", "flagged ok");
+  for (const auto& g : guards)
+  {
+    std::printf("%-26s %6d %9d %13d %10.1f mm %5.2f deg %13d %10d\n", g.first.c_str(),
+      g.second.tried, g.second.reliable, g.second.reliableBad, g.second.worstMm,
+      g.second.worstDegrees, g.second.flaggedBad, g.second.flaggedGood);
+  }
   if (keep.empty())
   {
     const std::string remove = "rm -rf '" + dir + "'";
-    status = std::system(remove.c_str()) == 0 ? status : status;
+    if (std::system(remove.c_str()) != 0)
+    {
+      std::fprintf(stderr, "BenchmarkMarkersPovRay: could not remove %s\n", dir.c_str());
+    }
   }
   return status;
 }
