@@ -17,6 +17,7 @@
 
 #include "CommandLine.h"
 #include "FileOutput.h"
+#include "MarkerPoses.h"
 #include "ProgramOutput.h"
 #include "RunMain.h"
 #include "SceneDescription.h"
@@ -409,69 +410,9 @@ void Progress(long long done, long long total, double elapsed, bool terminal)
   std::fflush(stderr);
 }
 
-// --poses-out: each rendered frame's camera pose found from its own markers, at the frame's time
-// (frames that kept the previous pose are left out and counted).
-struct FoundPoses
-{
-  std::string path; // "" when not asked for
-  catar::Trajectory trajectory;
-  long long missing = 0;
-
-  void Add(vtkCatadioptricSceneRenderer* renderer, long long frame)
-  {
-    if (this->path.empty())
-    {
-      return;
-    }
-    if (!renderer->GetFramePoseFound())
-    {
-      ++this->missing;
-      return;
-    }
-    double m[16];
-    renderer->GetCamera()->GetWorldToCameraElements(m);
-    catar::TimedPose pose;
-    pose.time = renderer->GetFrameTime(static_cast<int>(frame));
-    for (int i = 0; i < 16; ++i)
-    {
-      pose.worldToCamera(i / 4, i % 4) = m[i];
-    }
-    this->trajectory.poses.push_back(pose);
-  }
-
-  // Writes the TUM file (whole or not at all); false with the reason printed.
-  bool Write() const
-  {
-    if (this->path.empty())
-    {
-      return true;
-    }
-    if (this->trajectory.Empty())
-    {
-      std::fprintf(stderr,
-        "catadioptric-render: --poses-out %s: no frame had a pose from its markers; nothing "
-        "written\n",
-        this->path.c_str());
-      return false;
-    }
-    std::string error;
-    if (!catar::SaveTrajectory(this->path, this->trajectory, "tum", error))
-    {
-      std::fprintf(stderr, "catadioptric-render: --poses-out: %s\n", error.c_str());
-      return false;
-    }
-    if (!Quiet && !Json)
-    {
-      std::printf("wrote the poses of %zu frames to %s (%lld frames without a pose left out)\n",
-        this->trajectory.poses.size(), this->path.c_str(), this->missing);
-    }
-    return true;
-  }
-};
-
 // Renders frames [first, end) of the sequence to a pattern or a video; prints a summary.
 int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& outName,
-  long long first, long long end, double fps, FoundPoses& poses)
+  long long first, long long end, double fps, catar_render::MarkerPoses& poses)
 {
   vtkCatadioptricCamera* cam = renderer->GetCamera();
   catar::FrameWriter writer;
@@ -541,10 +482,11 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
     std::fprintf(stderr, "catadioptric-render: %s\n", error.c_str());
     return 1;
   }
-  if (!poses.Write())
+  if (!poses.Write(Quiet || Json))
   {
     return 1;
   }
+  const int status = poses.Status();
   if (!writer.GetNote().empty())
   {
     std::fprintf(stderr, "catadioptric-render: warning: %s\n", writer.GetNote().c_str());
@@ -572,11 +514,11 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
                 "\"stages_ms\": {%s}}\n",
       Quoted(outName).c_str(), n, first, end - 1, JsonNumber(total).c_str(),
       JsonNumber(n / total).c_str(), renderer->GetNumberOfPoseFailures(), stagesJson.c_str());
-    return 0;
+    return status;
   }
   if (Quiet)
   {
-    return 0;
+    return status;
   }
   std::printf("frames: %lld (%lld to %lld) in %.2f s: %.1f frames a second with decoding and "
               "encoding\n",
@@ -594,7 +536,7 @@ int RenderSequence(vtkCatadioptricSceneRenderer* renderer, const std::string& ou
   }
   std::printf("  %-11s %9.2f %9.2f\n", "encode", 1e3 * encode / n, 1e3 * encodeWorst);
   std::printf("wrote %s\n", outName.c_str());
-  return 0;
+  return status;
 }
 } // namespace
 
@@ -613,7 +555,7 @@ int Run(int argc, char* argv[])
   std::string frameRange;
   double fps = 0.0;
   std::string markers;
-  FoundPoses poses;
+  catar_render::MarkerPoses poses;
   double adaptive = 0.0;
   int antialiasSamples = 0;
   bool antialias = false, printDemo = false, alpha = false, reference = false;
@@ -649,8 +591,14 @@ int Run(int argc, char* argv[])
     "estimate each frame's camera pose from this board's markers seen in the background "
     "(Documentation/markers.md)");
   app.add_option("--poses-out", poses.path,
-    "write each frame's camera pose found from its markers to FILE.tum or FILE.txt (TUM: "
-    "time tx ty tz qx qy qz qw, the camera in the world; frames without a pose left out)");
+    "write each frame's camera pose found from its markers: FILE.tum or FILE.txt, the reliable "
+    "poses as a TUM trajectory (time tx ty tz qx qy qz qw, the camera in the world); FILE.csv or "
+    "FILE.json, every frame with its verdict (reliable, unreliable, missing), one-sigma "
+    "uncertainty and why (Documentation/markers.md)");
+  app.add_flag("--allow-missing-poses", poses.allowMissing,
+    "with markers, exit 0 even when frames had no reliable pose (they keep the previous frame's "
+    "pose; the frames before the first keep the scene's); without it such a run writes its "
+    "outputs and exits with status 3");
   app
     .add_option("--adaptive", adaptive,
       "split, every frame, the triangles whose edges bend more than P pixels "
@@ -830,13 +778,10 @@ int Run(int argc, char* argv[])
 
   if (!poses.path.empty())
   {
-    std::string ext = poses.path.substr(std::min(poses.path.size(), poses.path.rfind('.')));
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-      [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext != ".tum" && ext != ".txt")
+    const std::string problem = poses.CheckPath();
+    if (!problem.empty())
     {
-      std::fprintf(
-        stderr, "%s: --poses-out writes a TUM trajectory, FILE.tum or FILE.txt\n", kProgram);
+      std::fprintf(stderr, "%s: %s\n", kProgram, problem.c_str());
       return 2;
     }
     if (!renderer->GetUsesMarkers())
@@ -960,10 +905,11 @@ int Run(int argc, char* argv[])
     return 1;
   }
   if (!WriteMaskAndIds(renderer->GetOutput(), maskName, idsName) ||
-    !WriteDepth(renderer->GetOutput(), depthName) || !poses.Write())
+    !WriteDepth(renderer->GetOutput(), depthName) || !poses.Write(Quiet || Json))
   {
     return 1;
   }
+  const int status = poses.Status();
   vtkCatadioptricCamera* cam = renderer->GetCamera();
   if (Json)
   {
@@ -989,11 +935,11 @@ int Run(int argc, char* argv[])
       Quoted(vtkSMPTools::GetBackend()).c_str(), vtkSMPTools::GetEstimatedNumberOfThreads(), repeat,
       stagesJson.c_str(), JsonNumber(1e3 * frameTime).c_str(),
       JsonNumber(1e3 * frameTimes.front()).c_str());
-    return 0;
+    return status;
   }
   if (Quiet)
   {
-    return 0;
+    return status;
   }
   std::printf("scene: %s\n", scene.empty() ? "(built-in demo)" : scene.c_str());
   std::printf("image: %d x %d, %lld triangles, SMP backend %s (%d threads)\n", cam->GetImageWidth(),
@@ -1036,7 +982,7 @@ int Run(int argc, char* argv[])
     std::printf("  per frame   %9.2f ms (%s)\n", 1e3 * frameTime, sum.c_str());
   }
   std::printf("wrote %s\n", outName.c_str());
-  return 0;
+  return status;
 }
 } // namespace
 

@@ -121,6 +121,49 @@ std::string ValidateMarkerBoard(const MarkerBoard& board)
   return std::string();
 }
 
+// The board file's `guards` section (MarkerBoard::pose and the motion limits); absent keys keep
+// the defaults.
+void ReadGuards(const fs::Node& guards, MarkerBoard& board)
+{
+  PoseOptions& options = board.pose;
+  if (guards.empty() || guards.isNone())
+  {
+    return;
+  }
+  if (!guards.isMap())
+  {
+    throw fs::ParseError("'guards' must be a map (max_position_sigma, max_angle_sigma, ...)");
+  }
+  try
+  {
+    fs::CheckKeys(guards,
+      { "max_position_sigma", "max_angle_sigma", "min_inlier_fraction", "allow_single_marker",
+        "pixel_noise_floor", "max_speed", "max_turn_rate" });
+  }
+  catch (const fs::ParseError& e)
+  {
+    throw fs::ParseError(std::string("guards: ") + e.what());
+  }
+  const auto positive = [&](const char* key, double fallback) {
+    const double v = fs::Number(guards, key, fallback);
+    if (!(v > 0.0 && std::isfinite(v)))
+    {
+      throw fs::ParseError(std::string("guards: '") + key + "' must be a positive number");
+    }
+    return v;
+  };
+  options.maxPositionSigma = positive("max_position_sigma", options.maxPositionSigma);
+  options.maxAngleSigmaDegrees = positive("max_angle_sigma", options.maxAngleSigmaDegrees);
+  options.minimumPixelSigma = positive("pixel_noise_floor", options.minimumPixelSigma);
+  options.minInlierFraction = fs::Number(guards, "min_inlier_fraction", options.minInlierFraction);
+  if (!(options.minInlierFraction >= 0.0 && options.minInlierFraction <= 1.0))
+  {
+    throw fs::ParseError("guards: 'min_inlier_fraction' must be from 0 to 1");
+  }
+  options.allowSingleMarker = fs::Flag(guards, "allow_single_marker", options.allowSingleMarker);
+  board.maxSpeed = positive("max_speed", board.maxSpeed);
+  board.maxTurnRateDegrees = positive("max_turn_rate", board.maxTurnRateDegrees);
+}
 bool LoadMarkerBoard(const std::string& path, MarkerBoard& board, std::string& error)
 {
   fs::Node root;
@@ -135,8 +178,9 @@ bool LoadMarkerBoard(const std::string& path, MarkerBoard& board, std::string& e
     {
       throw fs::ParseError("a marker board must be a map (dictionary, markers)");
     }
-    fs::CheckKeys(root, { "dictionary", "markers" });
+    fs::CheckKeys(root, { "dictionary", "markers", "guards" });
     b.dictionary = fs::String(root, "dictionary", b.dictionary);
+    ReadGuards(root["guards"], b);
     const fs::Node markers = root["markers"];
     if (!markers.isSeq() || markers.size() == 0)
     {

@@ -41,10 +41,20 @@ struct MarkerBoard
 {
   std::string dictionary = "DICT_4X4_50";
   std::vector<BoardMarker> markers;
+  /// The pose estimation's options, its guards from the file's `guards` section:
+  ///   guards: { max_position_sigma: 0.008, max_angle_sigma: 0.4, min_inlier_fraction: 0.5,
+  ///             allow_single_marker: false, pixel_noise_floor: 0.5, max_speed: 5,
+  ///             max_turn_rate: 360 }
+  /// (metres, degrees, a fraction, a boolean, pixels; PoseOptions).
+  PoseOptions pose;
+  /// From frame to frame (MarkerPoseTracker.h): how far the camera may move between two frames'
+  /// poses, from the same section: max_speed (m/s), max_turn_rate (degrees/s).
+  double maxSpeed = 5.0;
+  double maxTurnRateDegrees = 360.0;
 };
 
 /// Reads a board file; false with a sentence naming the key (an unknown dictionary, an id the
-/// dictionary does not have, an id given twice, a size not positive, ...).
+/// dictionary does not have, an id given twice, a size not positive, a guard out of range, ...).
 bool LoadMarkerBoard(const std::string& path, MarkerBoard& board, std::string& error);
 /// "" when the dictionary is one of OpenCV's predefined ones and every id is in it, else a
 /// sentence.

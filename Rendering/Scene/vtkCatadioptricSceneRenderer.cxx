@@ -1,6 +1,7 @@
 #include "vtkCatadioptricSceneRenderer.h"
 
 #include "FileOutput.h"
+#include "MarkerPoseTracker.h"
 #include "Markers.h"
 #include "Memory.h"
 #include "MeshFileCheck.h"
@@ -289,12 +290,9 @@ struct vtkCatadioptricSceneRenderer::Internals
   // Pose from markers: the board, the still background's pixels (top row first) for an image
   // background, and the last estimation.
   bool UseMarkers = false;
-  catar::MarkerBoard Board;
+  catar::MarkerPoseTracker Tracker;
   catar::Frame StillFrame;
-  double PoseTime = 0.0;
-  std::string PoseReport;
-  int PoseFailures = 0;
-  bool PoseFound = false; // the last estimation's
+  std::string PoseReport; // GetPoseReport()'s text
   // Work of ApplyFrame that belongs to the next Render()'s frame: decoding the background's
   // frame (counted in the background stage) and estimating the pose from markers; and the pose
   // time of the last Render() (0 when it estimated none).
@@ -303,39 +301,20 @@ struct vtkCatadioptricSceneRenderer::Internals
   double FramePoseTime = 0.0;
 
   bool ApplyFrame(int k);
-  void EstimatePose(const catar::Frame& frame);
+  void EstimatePose(const catar::Frame& frame, double time);
 };
 
-void vtkCatadioptricSceneRenderer::Internals::EstimatePose(const catar::Frame& frame)
+void vtkCatadioptricSceneRenderer::Internals::EstimatePose(const catar::Frame& frame, double time)
 {
-  const auto start = Clock::now();
-  std::vector<catar::MarkerDetection> found;
-  std::string error;
-  catar::PoseResult pose;
-  if (!catar::DetectMarkers(
-        frame.width, frame.height, frame.rgba.data(), this->Board.dictionary, true, found, error))
+  // Only a reliable pose moves the camera; another keeps the previous frame's (the tracker's
+  // report says which).
+  const catar::FramePose& pose = this->Tracker.Track(
+    this->Camera->GetModel(), frame.width, frame.height, frame.rgba.data(), time);
+  if (pose.verdict == catar::PoseVerdict::Reliable)
   {
-    pose.error = error;
+    SetPose(this->Camera, pose.result.worldToCamera);
   }
-  else
-  {
-    pose = catar::PoseFromMarkers(this->Camera->GetModel(), this->Board, found);
-  }
-  this->PoseTime = Seconds(start, Clock::now());
-  this->PoseFound = pose.ok;
-  std::ostringstream report;
-  if (pose.ok)
-  {
-    report << found.size() << " markers, " << pose.inlierCount << " of " << pose.inliers.size()
-           << " corners inliers, " << pose.rmsPixels << " px rms";
-    SetPose(this->Camera, pose.worldToCamera);
-  }
-  else
-  {
-    report << "no pose (" << pose.error << "): the previous one kept";
-    ++this->PoseFailures;
-  }
-  this->PoseReport = report.str();
+  this->PendingPoseTime += pose.seconds;
 }
 
 bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
@@ -392,14 +371,12 @@ bool vtkCatadioptricSceneRenderer::Internals::ApplyFrame(int k)
     this->PendingDecodeTime += Seconds(start, Clock::now());
     if (this->UseMarkers)
     {
-      this->EstimatePose(frame);
-      this->PendingPoseTime += this->PoseTime;
+      this->EstimatePose(frame, time);
     }
   }
   else if (this->UseMarkers && this->CurrentFrame < 0)
   {
-    this->EstimatePose(this->StillFrame); // an image background: once
-    this->PendingPoseTime += this->PoseTime;
+    this->EstimatePose(this->StillFrame, time); // an image background: once
   }
   this->CurrentFrame = k;
   return true;
@@ -523,10 +500,7 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
     ? std::string(this->MarkerBoardFileName)
     : scene.markerBoardFile;
   in.UseMarkers = !boardFile.empty();
-  in.PoseFailures = 0;
-  in.PoseFound = false;
-  in.PoseReport.clear();
-  in.PoseTime = 0.0;
+  in.Tracker = catar::MarkerPoseTracker();
   if (in.UseMarkers)
   {
     if (scene.background.type != "video" && scene.background.type != "image")
@@ -535,12 +509,14 @@ bool vtkCatadioptricSceneRenderer::LoadScene()
       vtkErrorMacro(<< in.Error);
       return false;
     }
-    if (!catar::LoadMarkerBoard(boardFile, in.Board, in.Error))
+    catar::MarkerBoard board;
+    if (!catar::LoadMarkerBoard(boardFile, board, in.Error))
     {
       in.Error = "markers: " + in.Error;
       vtkErrorMacro(<< in.Error);
       return false;
     }
+    in.Tracker = catar::MarkerPoseTracker(board);
     if (scene.background.type == "image")
     {
       catar::FrameReader still;
@@ -951,17 +927,19 @@ vtkCatadioptricLighting* vtkCatadioptricSceneRenderer::GetLighting(int pipeline)
 
 double vtkCatadioptricSceneRenderer::GetPoseTime()
 {
-  return this->Internal->PoseTime;
+  return this->Internal->Tracker.Last().seconds;
 }
 
 const char* vtkCatadioptricSceneRenderer::GetPoseReport()
 {
-  return this->Internal->PoseReport.c_str();
+  Internals& in = *this->Internal;
+  in.PoseReport = in.UseMarkers && in.Tracker.Frames() > 0 ? in.Tracker.Report() : std::string();
+  return in.PoseReport.c_str();
 }
 
 int vtkCatadioptricSceneRenderer::GetNumberOfPoseFailures()
 {
-  return this->Internal->PoseFailures;
+  return this->Internal->Tracker.Failures();
 }
 
 bool vtkCatadioptricSceneRenderer::GetUsesMarkers()
@@ -971,7 +949,79 @@ bool vtkCatadioptricSceneRenderer::GetUsesMarkers()
 
 bool vtkCatadioptricSceneRenderer::GetFramePoseFound()
 {
-  return this->Internal->UseMarkers && this->Internal->PoseFound;
+  return this->Internal->UseMarkers &&
+    this->Internal->Tracker.Last().verdict == catar::PoseVerdict::Reliable &&
+    this->Internal->Tracker.Frames() > 0;
+}
+
+bool vtkCatadioptricSceneRenderer::GetAnyPoseFound()
+{
+  return this->Internal->UseMarkers && this->Internal->Tracker.AnyReliable();
+}
+
+const char* vtkCatadioptricSceneRenderer::GetFramePoseVerdict()
+{
+  const Internals& in = *this->Internal;
+  return in.UseMarkers && in.Tracker.Frames() > 0
+    ? catar::PoseVerdictName(in.Tracker.Last().verdict)
+    : "";
+}
+
+const char* vtkCatadioptricSceneRenderer::GetFramePoseNote()
+{
+  return this->Internal->Tracker.Last().note.c_str();
+}
+
+double vtkCatadioptricSceneRenderer::GetFramePosePositionSigma()
+{
+  const catar::PoseResult& r = this->Internal->Tracker.Last().result;
+  return r.ok ? r.uncertainty.positionSigma : std::numeric_limits<double>::quiet_NaN();
+}
+
+double vtkCatadioptricSceneRenderer::GetFramePoseAngleSigma()
+{
+  const catar::PoseResult& r = this->Internal->Tracker.Last().result;
+  return r.ok ? r.uncertainty.angleSigmaDegrees : std::numeric_limits<double>::quiet_NaN();
+}
+
+int vtkCatadioptricSceneRenderer::GetFramePoseMarkers()
+{
+  return this->Internal->Tracker.Last().markersFound;
+}
+
+int vtkCatadioptricSceneRenderer::GetFramePoseInliers()
+{
+  return this->Internal->Tracker.Last().result.inlierCount;
+}
+
+int vtkCatadioptricSceneRenderer::GetFramePoseCorners()
+{
+  return static_cast<int>(this->Internal->Tracker.Last().result.inliers.size());
+}
+
+double vtkCatadioptricSceneRenderer::GetFramePoseRMS()
+{
+  const catar::PoseResult& r = this->Internal->Tracker.Last().result;
+  return r.ok ? r.rmsPixels : std::numeric_limits<double>::quiet_NaN();
+}
+
+const catar::FramePose& vtkCatadioptricSceneRenderer::GetFramePose()
+{
+  return this->Internal->Tracker.Last();
+}
+
+bool vtkCatadioptricSceneRenderer::GetFramePoseEstimate(double worldToCamera[16])
+{
+  const catar::PoseResult& r = this->Internal->Tracker.Last().result;
+  if (!this->Internal->UseMarkers || !r.ok)
+  {
+    return false;
+  }
+  for (int i = 0; i < 16; ++i)
+  {
+    worldToCamera[i] = r.worldToCamera(i / 4, i % 4);
+  }
+  return true;
 }
 
 int vtkCatadioptricSceneRenderer::GetNumberOfFrames()

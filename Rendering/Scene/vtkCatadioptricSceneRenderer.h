@@ -31,6 +31,11 @@
 
 #include <memory> // for std::unique_ptr
 
+namespace catar
+{
+struct FramePose;
+}
+
 class vtkCatadioptricCamera;
 class vtkCatadioptricCompositor;
 class vtkCatadioptricLighting;
@@ -165,15 +170,37 @@ public:
   vtkSetStringMacro(MarkerBoardFileName);
   vtkGetStringMacro(MarkerBoardFileName);
   /// With markers: the pose estimation of the last frame (seconds), a line on it (markers found,
-  /// inliers, reprojection error, or why it failed), and the number of frames since LoadScene()
-  /// whose pose could not be estimated (they keep the previous frame's pose).
+  /// inliers, reprojection error and one sigma, or why it has no reliable pose), and the number
+  /// of frames since LoadScene() without a reliable pose (they keep the previous frame's pose;
+  /// frames before the first reliable pose keep the scene's camera pose).
   double GetPoseTime();
   const char* GetPoseReport();
   int GetNumberOfPoseFailures();
   /// Whether the loaded scene estimates its poses from markers, and whether the last rendered
-  /// frame's pose was found from that frame's own markers (false: it kept the previous one).
+  /// frame's pose was found reliable from that frame's own markers (false: it kept the previous
+  /// one); whether any frame since LoadScene() had a reliable pose.
   bool GetUsesMarkers();
   bool GetFramePoseFound();
+  bool GetAnyPoseFound();
+  /// The last frame's pose estimation (Documentation/markers.md, "Guards"): its verdict
+  /// ("reliable", "unreliable", "missing"; "" without markers), why it is not reliable (""
+  /// when it is), its one-sigma uncertainty (camera centre in metres, rotation in degrees; NaN
+  /// without a pose), the markers found, the corners that fit and those used, and the pose
+  /// estimated even when it is not reliable (world to camera, 16 values row by row; false when
+  /// there is none).
+  const char* GetFramePoseVerdict();
+  const char* GetFramePoseNote();
+  double GetFramePosePositionSigma();
+  double GetFramePoseAngleSigma();
+  int GetFramePoseMarkers();
+  int GetFramePoseInliers();
+  int GetFramePoseCorners();
+  double GetFramePoseRMS();
+  bool GetFramePoseEstimate(double worldToCamera[16]);
+#ifndef __VTK_WRAP__
+  /// All of the above at once (C++ only): the tracker's record of the last frame.
+  const catar::FramePose& GetFramePose();
+#endif
   double GetFrameTime(int frame);
   double GetFrameRate();
   const char* GetSequenceNote();

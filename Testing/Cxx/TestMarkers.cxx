@@ -292,7 +292,8 @@ objects:
     "'" + dir + "/estimate.yaml' -o '" + dir + "/out_%03d.png' --frames 0:20 --poses-out '" + dir +
       "/found.tum'");
   ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("wrote the poses of 20 frames to"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("wrote the reliable poses of 20 frames"), std::string::npos)
+    << run.output;
   catar::Trajectory found;
   ASSERT_TRUE(catar::LoadTrajectory(dir + "/found.tum", found, error)) << error;
   ASSERT_EQ(found.poses.size(), 20u);
@@ -304,6 +305,69 @@ objects:
     EXPECT_LT(metres, 0.01) << "frame " << k;
     EXPECT_LT(degrees, 0.5) << "frame " << k;
   }
+  // Every frame with its verdict and uncertainty: CSV and JSON.
+  const catar_test::ProgramRun csv = catar_test::RunProgram(CATAR_RENDER_PROGRAM,
+    "'" + dir + "/estimate.yaml' -o '" + dir + "/csv_%03d.png' --frames 0:4 --poses-out '" + dir +
+      "/found.csv'");
+  ASSERT_EQ(csv.status, 0) << csv.output;
+  std::ifstream table(dir + "/found.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(table, line));
+  EXPECT_EQ(line.rfind("frame,time,verdict,tx,ty,tz,qx,qy,qz,qw,sigma_position_m,", 0), 0u) << line;
+  int rows = 0;
+  while (std::getline(table, line))
+  {
+    std::vector<std::string> fields;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');)
+    {
+      fields.push_back(cell);
+    }
+    ASSERT_GE(fields.size(), 16u) << line;
+    EXPECT_EQ(fields[0], std::to_string(rows)) << line;
+    EXPECT_EQ(fields[2], "reliable") << line;
+    // The camera centre of the TUM convention, and a sigma within the default bound.
+    const catar::Mat4& t = truth.poses[rows].worldToCamera;
+    const catar::Vec3 centre = -t.topLeftCorner<3, 3>().transpose() * t.topRightCorner<3, 1>();
+    EXPECT_NEAR(std::stod(fields[3]), centre.x(), 0.01) << line;
+    EXPECT_NEAR(std::stod(fields[5]), centre.z(), 0.01) << line;
+    EXPECT_GT(std::stod(fields[10]), 0.0) << line;
+    EXPECT_LT(std::stod(fields[10]), 0.008) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);
+  const catar_test::ProgramRun json = catar_test::RunProgram(CATAR_RENDER_PROGRAM,
+    "'" + dir + "/estimate.yaml' -o '" + dir + "/json_%03d.png' --frames 0:2 --poses-out '" + dir +
+      "/found.json'");
+  ASSERT_EQ(json.status, 0) << json.output;
+  std::stringstream text;
+  text << std::ifstream(dir + "/found.json").rdbuf();
+  EXPECT_NE(text.str().find("\"verdict\": \"reliable\""), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("\"covariance\": ["), std::string::npos) << text.str();
+
+  // A board none of whose markers is in the frames: no frame has a pose. The outputs are written
+  // and the status says so (3), with what the frames drew; --allow-missing-poses accepts it.
+  std::ofstream(dir + "/absent.yaml")
+    << "dictionary: DICT_4X4_50\nmarkers:\n  - { id: 49, size: 0.2, translate: [ 0, -0.5, 0 ] }\n";
+  const std::string absent = "'" + dir + "/estimate.yaml' --markers '" + dir +
+    "/absent.yaml' -o '" + dir + "/absent_%03d.png' --frames 0:3";
+  const catar_test::ProgramRun refused = catar_test::RunProgram(CATAR_RENDER_PROGRAM, absent);
+  EXPECT_EQ(refused.status, 3) << refused.output;
+  EXPECT_NE(refused.output.find("3 of 3 frames had no reliable pose from their markers (0 flagged "
+                                "unreliable, 3 without a pose"),
+    std::string::npos)
+    << refused.output;
+  EXPECT_NE(
+    refused.output.find("every frame was drawn at the scene's own camera pose"), std::string::npos)
+    << refused.output;
+  std::ifstream written(dir + "/absent_002.png");
+  EXPECT_TRUE(written.good()) << "the frames are written";
+  const catar_test::ProgramRun allowed =
+    catar_test::RunProgram(CATAR_RENDER_PROGRAM, absent + " --allow-missing-poses");
+  EXPECT_EQ(allowed.status, 0) << allowed.output;
+  EXPECT_NE(allowed.output.find("note: 3 of 3 frames had no reliable pose"), std::string::npos)
+    << allowed.output;
+
   // Without markers there is nothing to write: refused before rendering.
   const catar_test::ProgramRun none = catar_test::RunProgram(CATAR_RENDER_PROGRAM,
     "'" + dir + "/render.yaml' -o '" + dir + "/plain.png' --poses-out '" + dir + "/none.tum'");
