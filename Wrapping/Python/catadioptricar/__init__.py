@@ -362,6 +362,93 @@ def render(scene_file=None, bgr=False, antialias=0):
     return image_to_numpy(scene.GetOutput(), bgr=bgr)
 
 
+def marker_poses(scene_file, markers=None, frames=None):
+    """The camera pose of each frame of a scene, found from the markers seen in its background.
+
+    Each frame is rendered as ``catadioptric-render`` does; its pose comes with a verdict and
+    its one-sigma uncertainty (Documentation/markers.md, "Guards"). A frame without a reliable
+    pose keeps the previous frame's pose in the rendering; here its own estimate (if any) is
+    returned, with its verdict.
+
+    Parameters
+    ----------
+    scene_file : str
+        A scene file whose background is a video or an image and which names a marker board
+        (its ``markers`` key), or any such scene with ``markers`` given here.
+    markers : str, optional
+        A marker board file, over the scene's ``markers``.
+    frames : iterable of int, optional
+        The frames to estimate (default: every frame of the scene).
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``frame`` (N, int), ``time`` (N, seconds), ``verdict`` (N, str: ``"reliable"``,
+        ``"unreliable"`` or ``"missing"``), ``world_to_camera`` (N x 4 x 4; NaN without an
+        estimate), ``sigma_position`` (N, metres: the camera centre's one sigma),
+        ``sigma_angle`` (N, degrees), ``markers`` (N, int: found in the frame), ``inliers`` and
+        ``corners`` (N, int: the corners that fit, of those used), ``rms`` (N, px) and ``note``
+        (N, str: why a frame has no reliable pose, "" when it has).
+
+    Raises
+    ------
+    RuntimeError
+        When the scene cannot be read or a frame cannot be rendered.
+    ValueError
+        When the scene estimates no pose from markers.
+    IndexError
+        When a frame is outside the scene's frames.
+    """
+    np = _numpy()
+    scene = vtkCatadioptricSceneRenderer()  # noqa: F405 (from CatadioptricARScene)
+    scene.SetSceneFileName(str(scene_file))
+    if markers is not None:
+        scene.SetMarkerBoardFileName(str(markers))
+    if not scene.LoadScene():
+        raise RuntimeError(scene.GetLastError())
+    if not scene.GetUsesMarkers():
+        raise ValueError("marker_poses: %s estimates no pose from markers: give markers=BOARD or "
+                         "the scene's 'markers' key" % scene_file)
+    count = scene.GetNumberOfFrames()
+    indices = list(range(count)) if frames is None else [int(k) for k in frames]
+    for k in indices:
+        if not 0 <= k < count:
+            raise IndexError("marker_poses: frame %d is outside the scene's frames 0 to %d"
+                             % (k, count - 1))
+    n = len(indices)
+    out = {
+        "frame": np.array(indices, dtype=np.int64),
+        "time": np.empty(n),
+        "verdict": np.empty(n, dtype=object),
+        "world_to_camera": np.full((n, 4, 4), np.nan),
+        "sigma_position": np.full(n, np.nan),
+        "sigma_angle": np.full(n, np.nan),
+        "markers": np.zeros(n, dtype=np.int64),
+        "inliers": np.zeros(n, dtype=np.int64),
+        "corners": np.zeros(n, dtype=np.int64),
+        "rms": np.full(n, np.nan),
+        "note": np.empty(n, dtype=object),
+    }
+    for i, k in enumerate(indices):
+        if not scene.RenderFrame(k):
+            raise RuntimeError("marker_poses: frame %d: %s" % (k, scene.GetLastError()))
+        out["time"][i] = scene.GetFrameTime(k)
+        out["verdict"][i] = scene.GetFramePoseVerdict()
+        out["note"][i] = scene.GetFramePoseNote()
+        estimate = [0.0] * 16
+        if scene.GetFramePoseEstimate(estimate):
+            out["world_to_camera"][i] = np.array(estimate).reshape(4, 4)
+            out["sigma_position"][i] = scene.GetFramePosePositionSigma()
+            out["sigma_angle"][i] = scene.GetFramePoseAngleSigma()
+            out["rms"][i] = scene.GetFramePoseRMS()
+        out["markers"][i] = scene.GetFramePoseMarkers()
+        out["inliers"][i] = scene.GetFramePoseInliers()
+        out["corners"][i] = scene.GetFramePoseCorners()
+    out["verdict"] = out["verdict"].astype(str)
+    out["note"] = out["note"].astype(str)
+    return out
+
+
 def render_mesh(vertices, triangles, camera=None, frame=None, color=(0.8, 0.8, 0.8),
                 background=(0.0, 0.0, 0.0, 1.0), bgr=False, antialias=0):
     """Draw a triangle mesh given as numpy arrays through the mirror; return the image as numpy.
@@ -475,4 +562,4 @@ def render_mesh(vertices, triangles, camera=None, frame=None, color=(0.8, 0.8, 0
 
 
 __all__ += ["image_to_numpy", "numpy_to_image", "project_points", "back_project", "render",
-            "render_mesh"]
+            "render_mesh", "marker_poses"]
