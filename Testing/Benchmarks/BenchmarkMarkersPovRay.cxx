@@ -213,9 +213,9 @@ int main(int argc, char** argv)
   const catar::CameraModel camera = DemoMarkerCamera();
   std::printf("Eight 20 cm markers on the floor through the demo mirror, rendered by POV-Ray "
               "(anti-aliased); 'noisy': blur sigma 1 px, noise sigma 6.\n");
-  std::printf("%5s %6s %8s %7s %11s %9s %9s %13s %8s %9s  %s\n", "frame", "kind", "visible",
+  std::printf("%5s %6s %8s %7s %11s %9s %9s %13s %8s %9s %11s  %s\n", "frame", "kind", "visible",
     "found", "corners px", "pose mm", "pose deg", "sigma mm/deg", "inliers", "detect ms",
-    "missed (shorter side, px)");
+    "solve ms", "missed (shorter side, px)");
   std::map<std::string, GuardStats> guards;
   int status = 0;
   for (int f = 0; f < frames; ++f)
@@ -268,7 +268,21 @@ int main(int argc, char** argv)
             std::to_string(static_cast<int>(std::lround(s.second))) + ")";
         }
       }
-      const catar::PoseResult pose = catar::PoseFromMarkers(camera, board, found);
+      // The solve's time: the first run after the detection (cold caches), and the median of
+      // ten more.
+      std::vector<double> solveTimes;
+      catar::PoseResult pose;
+      for (int repeat = 0; repeat < 11; ++repeat)
+      {
+        const auto solveStart = std::chrono::steady_clock::now();
+        pose = catar::PoseFromMarkers(camera, board, found);
+        solveTimes.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - solveStart)
+            .count());
+      }
+      const double firstSolveMs = solveTimes.front();
+      std::nth_element(solveTimes.begin() + 1, solveTimes.begin() + 6, solveTimes.end());
+      const double solveMs = solveTimes[6];
       double mm = NAN;
       double degrees = NAN;
       if (pose.ok)
@@ -278,12 +292,12 @@ int main(int argc, char** argv)
       double outward = NAN;
       double rms = NAN;
       CornerOffsets(camera, board, found, outward, rms);
-      std::printf(
-        "%5d %6s %8d %3d/%-3d %5.2f/%-5.2f %9.2f %9.3f %6.2f/%-5.3f%s %4d/%-3d %9.1f %s\n", f,
-        kind.first, visible, foundVisible, static_cast<int>(found.size()), outward, rms, mm,
+      std::printf("%5d %6s %8d %3d/%-3d %5.2f/%-5.2f %9.2f %9.3f %6.2f/%-5.3f%s %4d/%-3d %9.1f "
+                  "%5.2f/%-5.2f %s\n",
+        f, kind.first, visible, foundVisible, static_cast<int>(found.size()), outward, rms, mm,
         degrees, 1000.0 * pose.uncertainty.positionSigma, pose.uncertainty.angleSigmaDegrees,
         pose.reliable ? " " : "!", pose.inlierCount, static_cast<int>(4 * found.size()), ms,
-        missed.empty() ? " -" : missed.c_str());
+        firstSolveMs, solveMs, missed.empty() ? " -" : missed.c_str());
       guards[std::string("all markers, ") + kind.first].Add(pose, camera.worldToCamera);
       TryGuards(camera, board, found, guards);
       if (kind.second == &noisy && !keep.empty())
