@@ -17,6 +17,7 @@
 
 #include "CommandLine.h"
 #include "FileOutput.h"
+#include "Json.h"
 #include "MarkerPoses.h"
 #include "ProgramOutput.h"
 #include "RunMain.h"
@@ -120,41 +121,15 @@ bool IsAnInput(const catar::FileIdentities& inputs, const std::string& output, l
   return false;
 }
 
-// A JSON string.
+// A JSON string; a JSON number (finite; else null) to 6 digits.
 std::string Quoted(const std::string& text)
 {
-  std::string out = "\"";
-  for (const char c : text)
-  {
-    if (c == '"' || c == '\\')
-    {
-      out += '\\';
-      out += c;
-    }
-    else if (static_cast<unsigned char>(c) < 0x20)
-    {
-      char buffer[8];
-      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-      out += buffer;
-    }
-    else
-    {
-      out += c;
-    }
-  }
-  return out + "\"";
+  return catar::JsonString(text);
 }
 
-// A JSON number (finite; else null).
 std::string JsonNumber(double v)
 {
-  if (!std::isfinite(v))
-  {
-    return "null";
-  }
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.6g", v);
-  return buffer;
+  return catar::JsonNumber(v, 6);
 }
 
 bool IsNpy(const std::string& name)

@@ -1,6 +1,7 @@
 #include "PoseLog.h"
 
 #include "Csv.h"
+#include "Json.h"
 
 #include <Eigen/Geometry>
 
@@ -18,35 +19,6 @@ std::string Number(double v)
   char text[40];
   std::snprintf(text, sizeof(text), "%.17g", v);
   return text;
-}
-
-std::string JsonNumber(double v)
-{
-  return std::isfinite(v) ? Number(v) : std::string("null");
-}
-
-std::string JsonString(const std::string& s)
-{
-  std::string out = "\"";
-  for (const char c : s)
-  {
-    if (c == '"' || c == '\\')
-    {
-      out += '\\';
-      out += c;
-    }
-    else if (static_cast<unsigned char>(c) < 0x20)
-    {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\u%04x", c);
-      out += escaped;
-    }
-    else
-    {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 // Camera centre (world) and camera-to-world quaternion (x, y, z, w) of a world-to-camera pose.
