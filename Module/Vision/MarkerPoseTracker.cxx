@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -79,17 +80,32 @@ const FramePose& MarkerPoseTracker::Track(
 {
   const auto start = std::chrono::steady_clock::now();
   std::vector<MarkerDetection> found;
-  std::string error;
-  if (!DetectMarkers(width, height, rgba, this->BoardLayout.dictionary, true, found, error))
+  std::vector<std::array<Vec2, 4>> candidates;
+  FramePose f;
+  f.time = time;
+  if (!DetectMarkers(width, height, rgba, this->BoardLayout.dictionary, true, found, f.result.error,
+        &candidates))
   {
-    FramePose f;
-    f.time = time;
-    f.result.error = error;
     this->Judge(std::move(f));
   }
   else
   {
-    this->Track(camera, found, time);
+    f.result = PoseFromMarkers(camera, this->BoardLayout, found, this->BoardLayout.pose);
+    // Where the markers must be: this frame's pose, else the last reliable one.
+    if (f.result.ok || this->HaveReliable)
+    {
+      CameraModel posed = camera;
+      posed.worldToCamera = f.result.ok ? f.result.worldToCamera : this->Anchor.worldToCamera;
+      f.markersRecovered =
+        RecoverMarkers(width, height, rgba, posed, this->BoardLayout, candidates, found);
+      if (f.markersRecovered > 0)
+      {
+        f.result = PoseFromMarkers(camera, this->BoardLayout, found, this->BoardLayout.pose);
+      }
+    }
+    f.markersFound = static_cast<int>(found.size());
+    f.detections = std::move(found);
+    this->Judge(std::move(f));
   }
   this->LastPose.seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -103,6 +119,7 @@ const FramePose& MarkerPoseTracker::Track(
   FramePose f;
   f.time = time;
   f.markersFound = static_cast<int>(found.size());
+  f.detections = found;
   f.result = PoseFromMarkers(camera, this->BoardLayout, found, this->BoardLayout.pose);
   this->Judge(std::move(f));
   this->LastPose.seconds =

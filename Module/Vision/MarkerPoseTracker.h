@@ -2,7 +2,10 @@
 // with a verdict per frame.
 //
 // Each frame: the board's markers are detected (DetectMarkers), the pose is estimated from them
-// (PoseFromMarkers, with the board's guards), and then checked against the last reliable pose:
+// (PoseFromMarkers, with the board's guards); the board's markers that were found as shapes but
+// not decoded are read again where that pose -- or, without one, the last reliable pose -- puts
+// them (RecoverMarkers), and the pose estimated again with them; then it is checked against the
+// last reliable pose:
 // a pose that moved the camera faster than the board's max_speed or turned it faster than
 // max_turn_rate (beyond three of the two poses' sigmas) is flagged as a jump. Two jumps in a row
 // that agree with each other are taken as the camera's new place (the earlier pose was the wrong
@@ -32,8 +35,10 @@ struct FramePose
 {
   double time = 0.0;
   PoseVerdict verdict = PoseVerdict::Missing;
-  PoseResult result;    ///< the estimation (result.ok for Reliable and Unreliable)
-  int markersFound = 0; ///< markers of the board's dictionary found in the frame
+  PoseResult result;        ///< the estimation (result.ok for Reliable and Unreliable)
+  int markersFound = 0;     ///< markers of the board's dictionary found in the frame
+  int markersRecovered = 0; ///< of them, read again where the pose puts them (RecoverMarkers)
+  std::vector<MarkerDetection> detections; ///< the markers found, with their corners
   std::string note;     ///< why not reliable: the estimation's error or the guard's warning
   double seconds = 0.0; ///< detection and estimation
 };

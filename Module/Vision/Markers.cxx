@@ -263,7 +263,7 @@ bool MarkerImage(const std::string& dictionaryName, int id, int side, int margin
 
 bool DetectMarkers(int width, int height, const std::uint8_t* rgba,
   const std::string& dictionaryName, bool mirrored, std::vector<MarkerDetection>& detections,
-  std::string& error)
+  std::string& error, std::vector<std::array<Vec2, 4>>* candidates)
 {
   detections.clear();
   const cv::Ptr<cv::aruco::Dictionary> dictionary = Dictionary(dictionaryName, error);
@@ -284,6 +284,7 @@ bool DetectMarkers(int width, int height, const std::uint8_t* rgba,
     cv::flip(grey, grey, 1);
   }
   std::vector<std::vector<cv::Point2f>> corners;
+  std::vector<std::vector<cv::Point2f>> rejected;
   std::vector<int> ids;
   const cv::Ptr<cv::aruco::DetectorParameters> parameters = cv::aruco::DetectorParameters::create();
   // Corners from lines fitted to the contour: on markers rendered through the sphere (about 40
@@ -300,7 +301,7 @@ bool DetectMarkers(int width, int height, const std::uint8_t* rgba,
   parameters->perspectiveRemoveIgnoredMarginPerCell = 0.3;
   try
   {
-    cv::aruco::detectMarkers(grey, dictionary, corners, ids, parameters);
+    cv::aruco::detectMarkers(grey, dictionary, corners, ids, parameters, rejected);
   }
   catch (const cv::Exception& e)
   {
@@ -318,6 +319,19 @@ bool DetectMarkers(int width, int height, const std::uint8_t* rgba,
       d.corners[c] = Vec2(mirrored ? width - 1 - x : x, corners[i][c].y);
     }
     detections.push_back(d);
+  }
+  for (std::size_t i = 0; candidates && i < rejected.size(); ++i)
+  {
+    std::array<Vec2, 4> quad;
+    for (int c = 0; c < 4 && rejected[i].size() == 4; ++c)
+    {
+      const double x = rejected[i][c].x;
+      quad[c] = Vec2(mirrored ? width - 1 - x : x, rejected[i][c].y);
+    }
+    if (rejected[i].size() == 4)
+    {
+      candidates->push_back(quad);
+    }
   }
   return true;
 }

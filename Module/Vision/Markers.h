@@ -80,7 +80,23 @@ struct MarkerDetection
 /// from lines fitted to each marker's contour. False with a sentence for an unknown dictionary or
 /// an empty frame; no markers is not an error.
 bool DetectMarkers(int width, int height, const std::uint8_t* rgba, const std::string& dictionary,
-  bool mirrored, std::vector<MarkerDetection>& detections, std::string& error);
+  bool mirrored, std::vector<MarkerDetection>& detections, std::string& error,
+  std::vector<std::array<Vec2, 4>>* candidates = nullptr);
+// `candidates`, when given, receives the quadrilaterals that were found but not decoded (pixels,
+// mapped back as the markers' corners are), for RecoverMarkers.
+
+/// Markers of the board that DetectMarkers found as quadrilaterals but could not decode, recovered
+/// where a pose puts them: `camera` (with that pose) projects each missing marker's corners and
+/// the centres of its bit cells through the mirror; a candidate whose corners lie within a quarter
+/// of the marker's shorter side (3 px at least) of the projected ones, and whose cells sampled at
+/// the projected centres read the marker's border and bits (at most one of the inner bits wrong,
+/// two of the border's), is added to `detections` with its own corners (refined to sub-pixel), in
+/// the marker's order.
+/// A marker seen through a mirror near its rim has curved sides, and OpenCV reads its bits
+/// through a plane's homography: that is where decoding fails. Returns the number added.
+int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
+  const MarkerBoard& board, const std::vector<std::array<Vec2, 4>>& candidates,
+  std::vector<MarkerDetection>& detections);
 
 /// The pose from the detected markers of the board (their four corners each): EstimatePose on
 /// the corners of the markers the board has. result.error says why when it fails (no marker of

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 namespace catar_independent
@@ -99,6 +100,34 @@ inline std::vector<std::uint8_t> RgbaPixels(const cv::Mat& bgr)
   cv::Mat rgba;
   cv::cvtColor(bgr, rgba, cv::COLOR_BGR2RGBA);
   return std::vector<std::uint8_t>(rgba.data, rgba.data + rgba.total() * 4);
+}
+
+/// The shorter side (pixels) of each marker's image in an id mask (PovRayMarkerFrames.h: red
+/// k + 1 for marker k), from the smallest rectangle around its pixels.
+inline std::map<int, double> VisibleSizes(const cv::Mat& mask)
+{
+  std::map<int, std::vector<cv::Point>> pixels;
+  for (int y = 0; y < mask.rows; ++y)
+  {
+    for (int x = 0; x < mask.cols; ++x)
+    {
+      const int red = mask.at<cv::Vec3b>(y, x)[2];
+      if (red > 0)
+      {
+        pixels[red - 1].emplace_back(x, y);
+      }
+    }
+  }
+  std::map<int, double> sizes;
+  for (const auto& p : pixels)
+  {
+    if (p.second.size() >= 3)
+    {
+      const cv::RotatedRect box = cv::minAreaRect(p.second);
+      sizes[p.first] = std::min(box.size.width, box.size.height);
+    }
+  }
+  return sizes;
 }
 
 /// Camera centre distance (mm) and rotation angle (degrees) between two world-to-camera poses.
