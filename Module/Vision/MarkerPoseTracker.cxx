@@ -14,11 +14,6 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
-Vec3 CameraCentre(const Mat4& worldToCamera)
-{
-  return -worldToCamera.topLeftCorner<3, 3>().transpose() * worldToCamera.topRightCorner<3, 1>();
-}
-
 double TurnDegrees(const Mat4& a, const Mat4& b)
 {
   const Mat3 d = a.topLeftCorner<3, 3>() * b.topLeftCorner<3, 3>().transpose();
@@ -53,7 +48,8 @@ std::string MarkerPoseTracker::Jump(
   {
     return std::string();
   }
-  const double moved = (CameraCentre(pose.worldToCamera) - CameraCentre(from.worldToCamera)).norm();
+  const double moved =
+    (PoseFrames(pose.worldToCamera).centre - PoseFrames(from.worldToCamera).centre).norm();
   const double turned = TurnDegrees(pose.worldToCamera, from.worldToCamera);
   // Three of the two poses' sigmas together are noise, not motion.
   const double positionNoise =

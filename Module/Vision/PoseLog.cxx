@@ -24,9 +24,9 @@ std::string Number(double v)
 // Camera centre (world) and camera-to-world quaternion (x, y, z, w) of a world-to-camera pose.
 void TumPose(const Mat4& worldToCamera, Vec3& centre, double quaternion[4])
 {
-  const Mat3 cameraToWorld = worldToCamera.topLeftCorner<3, 3>().transpose();
-  centre = -cameraToWorld * worldToCamera.topRightCorner<3, 1>();
-  const Eigen::Quaterniond q = Eigen::Quaterniond(cameraToWorld).normalized();
+  const PoseFrames frames(worldToCamera);
+  centre = frames.centre;
+  const Eigen::Quaterniond q = Eigen::Quaterniond(frames.rotationT).normalized();
   quaternion[0] = q.x();
   quaternion[1] = q.y();
   quaternion[2] = q.z();

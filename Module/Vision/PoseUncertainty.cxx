@@ -30,9 +30,9 @@ struct CameraInWorld
   Mat3 rotation; // camera to world
   Vec3 centre;
 
-  explicit CameraInWorld(const Mat4& worldToCamera)
-    : rotation(worldToCamera.topLeftCorner<3, 3>().transpose())
-    , centre(-rotation * worldToCamera.topRightCorner<3, 1>())
+  explicit CameraInWorld(const PoseFrames& frames)
+    : rotation(frames.rotationT)
+    , centre(frames.centre)
   {
   }
 
@@ -68,7 +68,7 @@ PoseUncertainty EstimatePoseUncertainty(const Projector& projector,
   const std::vector<PoseObservation>& observations, const std::vector<unsigned char>& inliers,
   const Mat4& worldToCamera, double minimumPixelSigma)
 {
-  const CameraInWorld camera(worldToCamera);
+  const CameraInWorld camera{ PoseFrames(worldToCamera) };
   std::vector<std::size_t> used;
   for (std::size_t i = 0; i < observations.size(); ++i)
   {
