@@ -3,6 +3,7 @@
 #include "MirrorOutline.h"
 
 #include "ConicFit.h"
+#include "MirrorRim.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -27,44 +28,13 @@ using detail::Describe;
 using detail::Ellipse;
 using detail::EllipseOf;
 using detail::FitConic;
+using detail::RimFromProfiles;
+using detail::RimReport;
 using detail::SampsonDistance;
+using detail::Undistorter;
 using detail::ValidateLens;
 
 constexpr double kPi = 3.14159265358979323846;
-// The blur (pixels) of the strength that places outline points between pixels.
-constexpr double kFineSigma = 0.7;
-
-// ---- The lens -------------------------------------------------------------------------------
-
-// Undistorted pixel coordinates: K applied to the normalised undistorted coordinates, so that
-// lengths stay about a pixel while the lens distortion is undone.
-struct Undistorter
-{
-  explicit Undistorter(const CameraModel& camera)
-    : Camera(camera)
-  {
-  }
-  bool operator()(const Vec2& pixel, Vec2& undistorted) const
-  {
-    Vec2 xy;
-    if (!this->Camera.PixelToNormalized(pixel, xy))
-    {
-      return false;
-    }
-    const Intrinsics& k = this->Camera.intrinsics;
-    undistorted = Vec2(k.fx * xy.x() + k.skew * xy.y() + k.cx, k.fy * xy.y() + k.cy);
-    return undistorted.allFinite();
-  }
-  // The pixel of undistorted pixel coordinates.
-  Vec2 Distorted(const Vec2& undistorted) const
-  {
-    const Intrinsics& k = this->Camera.intrinsics;
-    const double y = (undistorted.y() - k.cy) / k.fy;
-    const double x = (undistorted.x() - k.cx - k.skew * y) / k.fx;
-    return this->Camera.DirectionToPixel(Vec3(x, y, 1.0));
-  }
-  const CameraModel& Camera;
-};
 
 // ---- Detection ------------------------------------------------------------------------------
 
@@ -414,9 +384,8 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
   // reflection's own edges just inside the rim pull less.
   cv::Mat colour;
   rgb.convertTo(colour, CV_32F);
-  cv::Mat strength, nx, ny, fineStrength;
+  cv::Mat strength, nx, ny;
   StructureTensor(colour, 1.0, strength, &nx, &ny);
-  StructureTensor(colour, kFineSigma, fineStrength, nullptr, nullptr);
   std::vector<float> nonFlat;
   for (int y = 0; y < height; ++y)
   {
@@ -440,7 +409,14 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
   const std::size_t rank = nonFlat.size() * 95 / 100;
   std::nth_element(
     nonFlat.begin(), nonFlat.begin() + static_cast<std::ptrdiff_t>(rank), nonFlat.end());
-  const double high = std::max(24.0, 0.3 * nonFlat[rank]);
+  double noise = 0.0;
+  {
+    std::vector<float> all(strength.begin<float>(), strength.end<float>());
+    const std::size_t middle = all.size() / 2;
+    std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(middle), all.end());
+    noise = all[middle];
+  }
+  const double high = std::max({ 24.0, 0.3 * nonFlat[rank], 4.0 * noise });
   const double low = 0.4 * high;
   cv::Mat blurred8, dx, dy, edges;
   cv::GaussianBlur(rgb, blurred8, cv::Size(0, 0), 1.0, 1.0, cv::BORDER_REPLICATE);
@@ -613,38 +589,35 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
             "edges";
     return false;
   }
-  const std::vector<std::size_t>& bestInliers = whole.inliers;
 
-  // Sub-pixel (Devernay's correction of Canny): along the image axis nearest the edge's normal,
-  // the fine strength's largest value among the edge pixel and its two neighbours, and the
-  // parabola through it and its own two neighbours: the parabola's vertex is on the edge.
-  std::vector<Vec2> refined, refinedUndistorted;
-  for (std::size_t i : bestInliers)
+  // The rim along the normals of the ellipse found: it may lie outside it, where the mirror
+  // reflects the backdrop at its rim with less contrast than its reflection's own edges inside.
+  std::vector<Vec2> rimPixels, rimUndistorted;
+  RimReport rim;
+  if (!RimFromProfiles(rgb, undistort, whole.ellipse, rimPixels, rimUndistorted, rim, error))
   {
-    const EdgePoint& p = points[i];
-    const bool alongX = std::abs(p.normal.x()) >= std::abs(p.normal.y());
-    const int ax = alongX ? 1 : 0, ay = alongX ? 0 : 1;
-    const int px = static_cast<int>(p.pixel.x()), py = static_cast<int>(p.pixel.y());
-    // Edge points are kBorder = 2 pixels inside the image: offsets -2..2 stay in it.
-    const auto at = [&](int k) { return fineStrength.at<float>(py + k * ay, px + k * ax); };
-    int top = -1;
-    for (int k = 0; k <= 1; ++k)
+    return false;
+  }
+  std::vector<Vec2> refined, refinedUndistorted;
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    Mat3 conic;
+    Ellipse e;
+    const std::vector<Vec2>& from = pass == 0 ? rimUndistorted : refinedUndistorted;
+    if (from.size() < 20 || !FitConic(from.data(), from.size(), conic) ||
+      EllipseOf(conic, e) != ConicKind::Ellipse)
     {
-      top = at(k) > at(top) ? k : top;
+      break;
     }
-    const double a = at(top - 1), b = at(top), c = at(top + 1);
-    const double curvature = a - 2.0 * b + c;
-    if (!(curvature < 0.0) || a > b || c > b)
+    refined.clear();
+    refinedUndistorted.clear();
+    for (std::size_t i = 0; i < rimUndistorted.size(); ++i)
     {
-      continue; // no maximum within a pixel of the edge pixel
-    }
-    const double offset = top + 0.5 * (a - c) / curvature;
-    const Vec2 q = p.pixel + offset * Vec2(ax, ay);
-    Vec2 u;
-    if (undistort(q, u))
-    {
-      refined.push_back(q);
-      refinedUndistorted.push_back(u);
+      if (SampsonDistance(e.Q, rimUndistorted[i]) < kInlierPixels)
+      {
+        refined.push_back(rimPixels[i]);
+        refinedUndistorted.push_back(rimUndistorted[i]);
+      }
     }
   }
   Mat3 finalConic;
