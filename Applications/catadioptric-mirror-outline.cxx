@@ -2,6 +2,7 @@
 // camera frame (Module/Vision/MirrorOutline.h).
 //
 //   catadioptric-mirror-outline CALIBRATION IMAGE --radius R [-o OUT.yaml] [--overlay OUT.png]
+//                               [--max-rms PX]
 //
 // The calibration gives the camera's intrinsics and distortion (its mirror is replaced by the
 // sphere found). Exit status: 0 success, 1 bad input or no outline, 2 usage error.
@@ -106,7 +107,13 @@ int Run(int argc, char* argv[])
   app.add_option(
     "-o,--output", output, "write the calibration with the mirror {type: sphere, center, radius}");
   app.add_option("--overlay", overlay,
-    "write the image with the detected outline points (green) and the sphere's outline (red)");
+    "write the image with the detected outline points (green) and the sphere's outline (red), "
+    "also when the fit is refused");
+  double maxRms = 3.0;
+  app.add_option("--max-rms", maxRms,
+    "refuse a fit whose points lie further than this RMS (pixels) from the sphere's outline: "
+    "not a whole sphere's outline (a dome's cut, a wrong lens calibration, a wrong edge); "
+    "default 3");
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
   {
@@ -173,6 +180,20 @@ int Run(int argc, char* argv[])
   if (!catar::SphereFromOutline(camera, radius, points, centre, report, error))
   {
     return Error(imagePath + ": " + error);
+  }
+  if (!(report.rmsPixels <= maxRms))
+  {
+    if (!overlay.empty())
+    {
+      WriteOverlay(overlay, bgr, camera, points, centre, radius, error);
+    }
+    char text[256];
+    std::snprintf(text, sizeof text,
+      "the outline found does not fit a sphere's: its %d points lie %.3g px (RMS) from the best "
+      "sphere's outline, more than --max-rms %.3g px (a dome's cut, a wrong lens calibration, "
+      "or an edge that is not the mirror's rim%s)",
+      report.pointCount, report.rmsPixels, maxRms, overlay.empty() ? "" : ": see the overlay");
+    return Error(imagePath + ": " + text);
   }
   std::printf("centre: %.9g %.9g %.9g\n", centre.x(), centre.y(), centre.z());
   std::printf("distance: %.9g\n", report.distance);

@@ -72,9 +72,10 @@ std::vector<double> Kernel(double sigma)
 {
   const int radius = std::max(1, static_cast<int>(std::ceil(3.0 * sigma)));
   std::vector<double> k(static_cast<std::size_t>(2 * radius + 1));
-  for (int i = -radius; i <= radius; ++i)
+  for (int i = 0; i <= 2 * radius; ++i)
   {
-    k[static_cast<std::size_t>(i + radius)] = std::exp(-0.5 * i * i / (sigma * sigma));
+    const double x = i - radius;
+    k[static_cast<std::size_t>(i)] = std::exp(-0.5 * x * x / (sigma * sigma));
   }
   return k;
 }
@@ -106,12 +107,12 @@ Grid Smoothed(const Grid& g, double acrossSigma, double alongSigma)
     for (int k = 0; k < g.cols; ++k)
     {
       double s = 0.0, w = 0.0;
-      for (int j = -ra; j <= ra; ++j)
+      for (std::size_t j = 0; j < across.size(); ++j)
       {
-        const int kk = k + j;
+        const int kk = k + static_cast<int>(j) - ra;
         if (kk >= 0 && kk < g.cols && !std::isnan(g(i, kk)))
         {
-          const double c = across[static_cast<std::size_t>(j + ra)];
+          const double c = across[j];
           s += c * g(i, kk);
           w += c;
         }
@@ -130,10 +131,10 @@ Grid Smoothed(const Grid& g, double acrossSigma, double alongSigma)
         continue;
       }
       double s = 0.0, w = 0.0;
-      for (int j = -rl; j <= rl; ++j)
+      for (std::size_t j = 0; j < along.size(); ++j)
       {
-        const int ii = ((i + j) % g.rows + g.rows) % g.rows;
-        const double c = along[static_cast<std::size_t>(j + rl)];
+        const int ii = ((i + static_cast<int>(j) - rl) % g.rows + g.rows) % g.rows;
+        const double c = along[j];
         s += c * sum(ii, k);
         w += c * weight(ii, k);
       }
@@ -199,14 +200,12 @@ std::vector<int> StrongestPath(const Grid& score, const std::vector<int>& lowest
 } // namespace
 
 bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse& guess,
-  std::vector<Vec2>& pixels, std::vector<Vec2>& undistorted, RimReport& report,
-  std::string& error)
+  std::vector<Vec2>& pixels, std::vector<Vec2>& undistorted, RimReport& report, std::string& error)
 {
   pixels.clear();
   undistorted.clear();
   report = RimReport{};
-  const double perimeter =
-    2.0 * kPi * std::sqrt(0.5 * (guess.a * guess.a + guess.b * guess.b));
+  const double perimeter = 2.0 * kPi * std::sqrt(0.5 * (guess.a * guess.a + guess.b * guess.b));
   const int n = std::clamp(static_cast<int>(perimeter / 2.0), 180, 4096);
   const double inside = std::min(kInside, 0.5 * guess.b);
   const int m = static_cast<int>((inside + std::max(6.0, kOutside * guess.b)) / kStep) + 1;
@@ -263,8 +262,8 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
   }
   // The noise: the median absolute derivative there (most samples lie off edges), as a sigma.
   const std::size_t half = magnitudes.size() / 2;
-  std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(half),
-    magnitudes.end());
+  std::nth_element(
+    magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(half), magnitudes.end());
   report.noise = 1.4826 * magnitudes[half];
   const double threshold = std::max(kPeakSigmas * report.noise, kMinPeak);
 
@@ -322,7 +321,8 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
     int covered = 0;
     for (int i = 0; i < n; ++i)
     {
-      covered += usable[static_cast<std::size_t>(i)] && peakNear(i, path[static_cast<std::size_t>(i)]) >= 0;
+      covered +=
+        usable[static_cast<std::size_t>(i)] && peakNear(i, path[static_cast<std::size_t>(i)]) >= 0;
     }
     if (covered < kMinCovered * report.angles)
     {
@@ -332,7 +332,8 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
     rimCovered = covered;
     for (int i = 0; i < n; ++i)
     {
-      lowest[static_cast<std::size_t>(i)] = std::min(path[static_cast<std::size_t>(i)] + kGap, m - 1);
+      lowest[static_cast<std::size_t>(i)] =
+        std::min(path[static_cast<std::size_t>(i)] + kGap, m - 1);
     }
   }
   if (rim.empty())
@@ -352,7 +353,8 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
   double shift = 0.0;
   for (int i = 0; i < n; ++i)
   {
-    const int k = usable[static_cast<std::size_t>(i)] ? peakNear(i, rim[static_cast<std::size_t>(i)]) : -1;
+    const int k =
+      usable[static_cast<std::size_t>(i)] ? peakNear(i, rim[static_cast<std::size_t>(i)]) : -1;
     if (k < 0)
     {
       continue;
@@ -372,8 +374,7 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
     const double curvature = a - 2.0 * b + c;
     const double offset = curvature < 0.0 ? std::clamp(0.5 * (a - c) / curvature, -0.5, 0.5) : 0.0;
     const double t = (top + offset) * kStep - inside;
-    const Vec2 u =
-      foot[static_cast<std::size_t>(i)] + t * normal[static_cast<std::size_t>(i)];
+    const Vec2 u = foot[static_cast<std::size_t>(i)] + t * normal[static_cast<std::size_t>(i)];
     const Vec2 q = lens.Distorted(u);
     if (q.allFinite())
     {

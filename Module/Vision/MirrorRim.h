@@ -32,10 +32,10 @@ struct Undistorter
 /// What RimFromProfiles found.
 struct RimReport
 {
-  int angles = 0;        ///< normals looked along (those inside the image)
-  int covered = 0;       ///< of those, normals on which the rim shows as an edge
-  double shift = 0.0;    ///< mean distance (pixels) of the rim outside the first ellipse
-  double noise = 0.0;    ///< the profiles' derivative noise (grey levels per pixel), one sigma
+  int angles = 0;     ///< normals looked along (those inside the image)
+  int covered = 0;    ///< of those, normals on which the rim shows as an edge
+  double shift = 0.0; ///< mean distance (pixels) of the rim outside the first ellipse
+  double noise = 0.0; ///< the profiles' derivative noise (grey levels per pixel), one sigma
 };
 
 /// The mirror's rim near a first ellipse `guess` (undistorted pixels; what the image's strong
@@ -51,8 +51,7 @@ struct RimReport
 /// points in the image as it is (distorted). False, with a sentence in `error`, when fewer than
 /// half the normals inside the image show the rim.
 bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse& guess,
-  std::vector<Vec2>& pixels, std::vector<Vec2>& undistorted, RimReport& report,
-  std::string& error);
+  std::vector<Vec2>& pixels, std::vector<Vec2>& undistorted, RimReport& report, std::string& error);
 } // namespace detail
 } // namespace catar
 

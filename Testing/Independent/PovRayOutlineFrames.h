@@ -13,6 +13,7 @@
 #define catarPovRayOutlineFrames_h
 
 #include "CameraModel.h"
+#include "PovRayMarkerFrames.h" // HavePovRay
 
 #include <cmath>
 #include <cstdlib>
@@ -28,9 +29,9 @@ struct OutlineScene
   catar::Intrinsics intrinsics{ 1000.0, 1000.0, 663.5, 523.5, 0.0, 1328, 1048 };
   catar::Vec3 centre{ 0.0, 0.0, 0.14 }; ///< the sphere's centre
   double radius = 0.05;
-  double reflectance = 0.7; ///< of the mirror (polished chrome reflects 0.6-0.7 of the light)
-  double backdrop = 0.9;    ///< grey level (0-1) of the backdrop
-  double backdropBehind = 0.3; ///< distance of the backdrop behind the mirror's centre (along z)
+  double reflectance = 0.7;       ///< of the mirror (polished chrome reflects 0.6-0.7 of the light)
+  double backdrop = 0.9;          ///< grey level (0-1) of the backdrop
+  double backdropBehind = 0.3;    ///< distance of the backdrop behind the mirror's centre (along z)
   double backdropHalfSide = 0.45; ///< the backdrop square's half side
   /// A dome: the part of the sphere on the side of `domeAxis` (unit, camera frame, pointing out
   /// of the dome) beyond the plane at domeCut * radius from the centre along it; the rest is cut
@@ -78,11 +79,11 @@ inline bool RenderOutlineFrame(const std::string& dir, const std::string& name,
        "1 diffuse 0 } no_image }\n";
   const double back = scene.centre.z() + scene.backdropBehind;
   const double h = scene.backdropHalfSide;
-  s << "box { " << PovVector(catar::Vec3(scene.centre.x() - h, scene.centre.y() - h, back))
-    << ", " << PovVector(catar::Vec3(scene.centre.x() + h, scene.centre.y() + h, back + 0.01))
+  s << "box { " << PovVector(catar::Vec3(scene.centre.x() - h, scene.centre.y() - h, back)) << ", "
+    << PovVector(catar::Vec3(scene.centre.x() + h, scene.centre.y() + h, back + 0.01))
     << " pigment { rgb " << scene.backdrop << " } finish { ambient 1 diffuse 0 } }\n";
-  const std::string mirror = "sphere { " + PovVector(scene.centre) + ", " +
-    std::to_string(scene.radius) + " }";
+  const std::string mirror =
+    "sphere { " + PovVector(scene.centre) + ", " + std::to_string(scene.radius) + " }";
   std::ostringstream finish;
   finish << "pigment { rgb 0 } finish { ambient 0 diffuse 0 reflection " << scene.reflectance
          << " }";
