@@ -30,11 +30,16 @@ using detail::EllipseOf;
 using detail::FitConic;
 using detail::RimFromProfiles;
 using detail::RimReport;
+using detail::RimSearch;
 using detail::SampsonDistance;
 using detail::Undistorter;
 using detail::ValidateLens;
 
 constexpr double kPi = 3.14159265358979323846;
+// The least side of a frame searched, and the largest side searched whole (larger ones are
+// reduced for the search, then the rim placed on the whole frame).
+constexpr int kMinSide = 16;
+constexpr double kWorkingSide = 1024.0;
 
 // ---- Detection ------------------------------------------------------------------------------
 
@@ -320,65 +325,13 @@ bool RefineByRansac(const Ellipse& guess, const std::vector<EdgePoint>& points, 
   }
   return bestInliers.size() >= kMinPiece;
 }
-} // namespace
-
-bool DetectMirrorOutline(const Intrinsics& intrinsics, int width, int height,
-  const std::uint8_t* rgba, std::vector<Vec2>& outlinePixels, std::string& error)
+// The ellipse (undistorted pixels) of the image's strong edges that they cover along the greatest
+// length: the mirror's outline, or an edge of its reflection just inside it. `rgb`: 8-bit RGB of
+// the camera's size.
+bool StrongEdgeEllipse(
+  const CameraModel& camera, const cv::Mat& rgb, Ellipse& found, std::string& error)
 {
-  CameraModel camera;
-  camera.intrinsics = intrinsics;
-  return DetectMirrorOutline(camera, width, height, rgba, outlinePixels, error);
-}
-
-bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const std::uint8_t* rgba,
-  std::vector<Vec2>& outlinePixels, std::string& error)
-{
-  outlinePixels.clear();
-  if (!rgba || width <= 0 || height <= 0)
-  {
-    error = "the image is empty";
-    return false;
-  }
-  if (const std::string lens = ValidateLens(camera); !lens.empty())
-  {
-    error = "the camera is not usable: " + lens;
-    return false;
-  }
-  if (width != camera.intrinsics.width || height != camera.intrinsics.height)
-  {
-    error = "the image is " + std::to_string(width) + " x " + std::to_string(height) +
-      " pixels but the camera's intrinsics are for " + std::to_string(camera.intrinsics.width) +
-      " x " + std::to_string(camera.intrinsics.height);
-    return false;
-  }
-  constexpr int kMinSide = 16;
-  if (width < kMinSide || height < kMinSide)
-  {
-    error = "the image is too small to find an outline in (at least " + std::to_string(kMinSide) +
-      " x " + std::to_string(kMinSide) + " pixels)";
-    return false;
-  }
-
-  const cv::Mat frame(height, width, CV_8UC4, const_cast<std::uint8_t*>(rgba));
-  cv::Mat rgb;
-  cv::cvtColor(frame, rgb, cv::COLOR_RGBA2RGB);
-  {
-    std::vector<cv::Mat> channels;
-    cv::split(rgb, channels);
-    double range = 0.0;
-    for (const cv::Mat& channel : channels)
-    {
-      double lo = 0.0, hi = 0.0;
-      cv::minMaxLoc(channel, &lo, &hi);
-      range = std::max(range, hi - lo);
-    }
-    if (range < 4.0)
-    {
-      error = "the image is blank (a single colour): there is no mirror to outline";
-      return false;
-    }
-  }
-
+  const int width = rgb.cols, height = rgb.rows;
   // The edges' strength and normals (Canny's thresholds, the edges' directions) on the image
   // blurred with sigma 1; the strength again with less blur for the sub-pixel positions, which the
   // reflection's own edges just inside the rim pull less.
@@ -590,13 +543,145 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
     return false;
   }
 
-  // The rim along the normals of the ellipse found: it may lie outside it, where the mirror
-  // reflects the backdrop at its rim with less contrast than its reflection's own edges inside.
-  std::vector<Vec2> rimPixels, rimUndistorted;
-  RimReport rim;
-  if (!RimFromProfiles(rgb, undistort, whole.ellipse, rimPixels, rimUndistorted, rim, error))
+  found = whole.ellipse;
+  return true;
+}
+} // namespace
+
+bool DetectMirrorOutline(const Intrinsics& intrinsics, int width, int height,
+  const std::uint8_t* rgba, std::vector<Vec2>& outlinePixels, std::string& error)
+{
+  CameraModel camera;
+  camera.intrinsics = intrinsics;
+  return DetectMirrorOutline(camera, width, height, rgba, outlinePixels, error);
+}
+
+bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const std::uint8_t* rgba,
+  std::vector<Vec2>& outlinePixels, std::string& error)
+{
+  outlinePixels.clear();
+  if (!rgba || width <= 0 || height <= 0)
+  {
+    error = "the image is empty";
+    return false;
+  }
+  if (const std::string lens = ValidateLens(camera); !lens.empty())
+  {
+    error = "the camera is not usable: " + lens;
+    return false;
+  }
+  if (width != camera.intrinsics.width || height != camera.intrinsics.height)
+  {
+    error = "the image is " + std::to_string(width) + " x " + std::to_string(height) +
+      " pixels but the camera's intrinsics are for " + std::to_string(camera.intrinsics.width) +
+      " x " + std::to_string(camera.intrinsics.height);
+    return false;
+  }
+  if (width < kMinSide || height < kMinSide)
+  {
+    error = "the image is too small to find an outline in (at least " + std::to_string(kMinSide) +
+      " x " + std::to_string(kMinSide) + " pixels)";
+    return false;
+  }
+
+  const cv::Mat frame(height, width, CV_8UC4, const_cast<std::uint8_t*>(rgba));
+  // Coarse to fine: the strong edges and the rim's search on the frame reduced to at most
+  // kWorkingSide pixels a side (a large photograph costs no more than that), then the rim placed
+  // on the whole frame in a narrow band around it.
+  const double scale = std::min(1.0, kWorkingSide / std::max(width, height));
+  cv::Mat rgb;
+  if (scale < 1.0)
+  {
+    cv::Mat reduced;
+    cv::resize(frame, reduced,
+      cv::Size(std::max(kMinSide, static_cast<int>(std::lround(width * scale))),
+        std::max(kMinSide, static_cast<int>(std::lround(height * scale)))),
+      0.0, 0.0, cv::INTER_AREA);
+    cv::cvtColor(reduced, rgb, cv::COLOR_RGBA2RGB);
+  }
+  else
+  {
+    cv::cvtColor(frame, rgb, cv::COLOR_RGBA2RGB);
+  }
+  {
+    std::vector<cv::Mat> channels;
+    cv::split(rgb, channels);
+    double range = 0.0;
+    for (const cv::Mat& channel : channels)
+    {
+      double lo = 0.0, hi = 0.0;
+      cv::minMaxLoc(channel, &lo, &hi);
+      range = std::max(range, hi - lo);
+    }
+    if (range < 4.0)
+    {
+      error = "the image is blank (a single colour): there is no mirror to outline";
+      return false;
+    }
+  }
+
+  // The camera of the reduced frame: pixel centres map as the area reduction maps them.
+  CameraModel coarse = camera;
+  {
+    const double sx = static_cast<double>(rgb.cols) / width;
+    const double sy = static_cast<double>(rgb.rows) / height;
+    Intrinsics& k = coarse.intrinsics;
+    k.fx *= sx;
+    k.skew *= sx;
+    k.cx = (k.cx + 0.5) * sx - 0.5;
+    k.fy *= sy;
+    k.cy = (k.cy + 0.5) * sy - 0.5;
+    k.width = rgb.cols;
+    k.height = rgb.rows;
+  }
+  Ellipse guess;
+  if (!StrongEdgeEllipse(coarse, rgb, guess, error))
   {
     return false;
+  }
+
+  // The rim along the normals of that ellipse: it may lie outside it, where the mirror reflects
+  // the backdrop at its rim with less contrast than its reflection's own edges inside.
+  const Undistorter coarseLens(coarse);
+  std::vector<Vec2> rimPixels, rimUndistorted;
+  RimReport rim;
+  RimSearch search;
+  search.outside = std::max(6.0, 0.25 * guess.b);
+  if (!RimFromProfiles(rgb, coarseLens, guess, search, rimPixels, rimUndistorted, rim, error))
+  {
+    return false;
+  }
+  const Undistorter undistort(camera);
+  if (scale < 1.0)
+  {
+    // On the whole frame, near the rim found: the reduced frame's undistorted pixels are the
+    // whole one's through the normalised coordinates.
+    const Intrinsics& c = coarse.intrinsics;
+    const Intrinsics& f = camera.intrinsics;
+    std::vector<Vec2> whole;
+    for (const Vec2& u : rimUndistorted)
+    {
+      const double y = (u.y() - c.cy) / c.fy;
+      const double x = (u.x() - c.cx - c.skew * y) / c.fx;
+      whole.push_back(Vec2(f.fx * x + f.skew * y + f.cx, f.fy * y + f.cy));
+    }
+    Mat3 conic;
+    Ellipse rimEllipse;
+    if (whole.size() < 20 || !FitConic(whole.data(), whole.size(), conic) ||
+      EllipseOf(conic, rimEllipse) != ConicKind::Ellipse)
+    {
+      error = "no mirror outline found: the rim's points do not lie on an ellipse";
+      return false;
+    }
+    RimSearch near;
+    near.inside = near.outside = 2.0 + 2.0 / scale;
+    near.alongSigma = search.alongSigma / scale;
+    near.place = true;
+    if (!RimFromProfiles(
+          frame, undistort, rimEllipse, near, rimPixels, rimUndistorted, rim, error))
+    {
+      return false;
+    }
   }
   std::vector<Vec2> refined, refinedUndistorted;
   for (int pass = 0; pass < 3; ++pass)

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -36,11 +37,7 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kStep = 0.5;        // spacing of the samples along a normal, pixels
-constexpr double kInside = 3.0;      // the search starts this far inside the first ellipse
-constexpr double kOutside = 0.25;    // and ends this fraction of its least semi-axis outside
-constexpr double kAcrossSigma = 2.0; // smoothing across the rim to find it, pixels
-constexpr double kFineSigma = 1.0;   // and to place it (a wider blur is pulled by edges nearby)
-constexpr double kAlongSigma = 10.0; // smoothing along the rim, pixels of arc
+constexpr double kFineSigma = 1.0;   // smoothing across the rim to place it, pixels
 constexpr double kPeakSigmas = 5.0;  // an edge: the derivative beyond this many noise sigmas
 constexpr double kMinPeak = 0.5;     // and at least this (grey levels per pixel)
 constexpr double kMinCovered = 0.5;  // a rim: edges on at least this fraction of the normals
@@ -48,19 +45,21 @@ constexpr int kGap = 4;              // samples between one closed edge and the 
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-// The mean of the three channels of an 8-bit RGB image at a pixel (bilinear); NaN outside.
-float Grey(const cv::Mat& rgb, const Vec2& p)
+// The mean of the first three channels of an 8-bit RGB or RGBA image at a pixel (bilinear); NaN
+// outside.
+template <int Channels>
+float Grey(const cv::Mat& image, const Vec2& p)
 {
   const double x = p.x(), y = p.y();
-  if (!(x >= 0.0 && y >= 0.0 && x <= rgb.cols - 1 && y <= rgb.rows - 1))
+  if (!(x >= 0.0 && y >= 0.0 && x <= image.cols - 1 && y <= image.rows - 1))
   {
     return kNaN;
   }
-  const int x0 = std::min(static_cast<int>(x), rgb.cols - 2);
-  const int y0 = std::min(static_cast<int>(y), rgb.rows - 2);
+  const int x0 = std::min(static_cast<int>(x), image.cols - 2);
+  const int y0 = std::min(static_cast<int>(y), image.rows - 2);
   const double fx = x - x0, fy = y - y0;
   const auto at = [&](int xx, int yy) {
-    const cv::Vec3b& v = rgb.at<cv::Vec3b>(yy, xx);
+    const std::uint8_t* v = image.ptr<std::uint8_t>(yy) + Channels * xx;
     return (static_cast<double>(v[0]) + v[1] + v[2]) / 3.0;
   };
   return static_cast<float>((1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
@@ -199,18 +198,25 @@ std::vector<int> StrongestPath(const Grid& score, const std::vector<int>& lowest
 }
 } // namespace
 
-bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse& guess,
-  std::vector<Vec2>& pixels, std::vector<Vec2>& undistorted, RimReport& report, std::string& error)
+bool RimFromProfiles(const cv::Mat& image, const Undistorter& lens, const Ellipse& guess,
+  const RimSearch& search, std::vector<Vec2>& pixels, std::vector<Vec2>& undistorted,
+  RimReport& report, std::string& error)
 {
+  if (image.type() != CV_8UC3 && image.type() != CV_8UC4)
+  {
+    error = "the rim's search needs an 8-bit RGB or RGBA image";
+    return false;
+  }
+  const auto grey = image.type() == CV_8UC3 ? Grey<3> : Grey<4>;
   pixels.clear();
   undistorted.clear();
   report = RimReport{};
   const double perimeter = 2.0 * kPi * std::sqrt(0.5 * (guess.a * guess.a + guess.b * guess.b));
   const int n = std::clamp(static_cast<int>(perimeter / 2.0), 180, 4096);
-  const double inside = std::min(kInside, 0.5 * guess.b);
-  const int m = static_cast<int>((inside + std::max(6.0, kOutside * guess.b)) / kStep) + 1;
+  const double inside = std::min(search.inside, 0.5 * guess.b);
+  const int m = static_cast<int>((inside + search.outside) / kStep) + 1;
   std::vector<Vec2> foot(static_cast<std::size_t>(n)), normal(static_cast<std::size_t>(n));
-  Grid grey(n, m, kNaN);
+  Grid profile(n, m, kNaN);
   std::vector<bool> usable(static_cast<std::size_t>(n), false);
   for (int i = 0; i < n; ++i)
   {
@@ -227,8 +233,8 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
     for (int k = 0; k < m; ++k)
     {
       const Vec2 q = lens.Distorted(p + (k * kStep - inside) * g);
-      grey(i, k) = q.allFinite() ? Grey(rgb, q) : kNaN;
-      valid += !std::isnan(grey(i, k));
+      profile(i, k) = q.allFinite() ? grey(image, q) : kNaN;
+      valid += !std::isnan(profile(i, k));
     }
     // A normal whose search reaches out of the image over much of its length tells nothing.
     usable[static_cast<std::size_t>(i)] = valid >= 0.8 * m;
@@ -239,7 +245,8 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
     error = "the mirror's rim lies outside the image";
     return false;
   }
-  const Grid smooth = Smoothed(grey, kAcrossSigma / kStep, kAlongSigma / (perimeter / n));
+  const double along = search.alongSigma / (perimeter / n);
+  const Grid smooth = Smoothed(profile, search.acrossSigma / kStep, along);
   Grid slope(n, m, kNaN);
   std::vector<float> magnitudes;
   for (int i = 0; i < n; ++i)
@@ -265,7 +272,9 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
   std::nth_element(
     magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(half), magnitudes.end());
   report.noise = 1.4826 * magnitudes[half];
-  const double threshold = std::max(kPeakSigmas * report.noise, kMinPeak);
+  // Placing a rim known to lie in the band: every peak counts, the strongest is the rim.
+  const double threshold =
+    search.place ? 0.0 : std::max(kPeakSigmas * report.noise, kMinPeak);
 
   // Edges: the derivative's peaks (across the rim) above the threshold.
   Grid peak(n, m, 0.0f), score(n, m, -0.3f);
@@ -311,7 +320,27 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
   };
   std::vector<int> lowest(static_cast<std::size_t>(n), 0), rim;
   int rimCovered = 0;
-  for (int layer = 0; layer < 8; ++layer)
+  if (search.place)
+  {
+    rim.assign(static_cast<std::size_t>(n), -1);
+    for (int i = 0; i < n; ++i)
+    {
+      for (int k = 0; k < m; ++k)
+      {
+        int& best = rim[static_cast<std::size_t>(i)];
+        if (peak(i, k) > 0.0f && (best < 0 || peak(i, k) > peak(i, best)))
+        {
+          best = k;
+        }
+      }
+      rimCovered += usable[static_cast<std::size_t>(i)] && rim[static_cast<std::size_t>(i)] >= 0;
+    }
+    if (rimCovered < kMinCovered * report.angles)
+    {
+      rim.clear();
+    }
+  }
+  for (int layer = 0; layer < 8 && !search.place; ++layer)
   {
     const std::vector<int> path = StrongestPath(score, lowest);
     if (path[0] < 0)
@@ -345,7 +374,7 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
 
   // The rim's points: on each normal, the peak of the derivative with less smoothing across
   // within a pixel and a half of the rim's, between samples by a parabola.
-  const Grid fine = Smoothed(grey, kFineSigma / kStep, kAlongSigma / (perimeter / n));
+  const Grid fine = Smoothed(profile, kFineSigma / kStep, along);
   const auto fineSlope = [&](int i, int k) {
     return k >= 1 && k + 1 < m ? (fine(i, k + 1) - fine(i, k - 1)) / static_cast<float>(2.0 * kStep)
                                : kNaN;
@@ -353,8 +382,9 @@ bool RimFromProfiles(const cv::Mat& rgb, const Undistorter& lens, const Ellipse&
   double shift = 0.0;
   for (int i = 0; i < n; ++i)
   {
-    const int k =
-      usable[static_cast<std::size_t>(i)] ? peakNear(i, rim[static_cast<std::size_t>(i)]) : -1;
+    const int k = usable[static_cast<std::size_t>(i)] && rim[static_cast<std::size_t>(i)] >= 0
+      ? peakNear(i, rim[static_cast<std::size_t>(i)])
+      : -1;
     if (k < 0)
     {
       continue;
