@@ -5,6 +5,8 @@
 #include "ConicFit.h"
 #include "MirrorRim.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -40,6 +42,9 @@ constexpr double kPi = 3.14159265358979323846;
 // reduced for the search, then the rim placed on the whole frame).
 constexpr int kMinSide = 16;
 constexpr double kWorkingSide = 1024.0;
+// The rim's points left out at each end of the outline's arcs (its points are 2 px apart, and
+// smoothed along the rim over 10 px).
+constexpr std::size_t kEndTrim = 10;
 
 // ---- Detection ------------------------------------------------------------------------------
 
@@ -228,6 +233,66 @@ std::vector<std::vector<Vec2>> SmoothPieces(const std::vector<Vec2>& chain)
   return pieces;
 }
 
+// The image of a sphere's outline is that of a right circular cone from the camera centre: its
+// rays' unit vectors end on a circle of the unit sphere, in a plane. So the cone nearest a set of
+// rays (least squares on d . r - cos(alpha)) has the axis d of the least eigenvector of the rays'
+// covariance, and cos(alpha) the mean ray's component along it. The conic of that cone in
+// undistorted pixels (K the intrinsics): K^-T (d d^T - cos^2(alpha) I) K^-1. False when the
+// points fix no cone (fewer than 3, or along one great circle) or its conic is no ellipse.
+// The unit ray of an undistorted pixel.
+Vec3 RayOf(const Intrinsics& k, const Vec2& undistorted)
+{
+  const double y = (undistorted.y() - k.cy) / k.fy;
+  return Vec3((undistorted.x() - k.cx - k.skew * y) / k.fx, y, 1.0).normalized();
+}
+
+// The right circular cone nearest the rays (see ConeEllipse): its unit axis d and cos(alpha).
+bool ConeOfRays(const std::vector<Vec3>& rays, Vec3& d, double& cosAlpha)
+{
+  if (rays.size() < 3)
+  {
+    return false;
+  }
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& r : rays)
+  {
+    mean += r;
+  }
+  mean /= static_cast<double>(rays.size());
+  Mat3 covariance = Mat3::Zero();
+  for (const Vec3& r : rays)
+  {
+    covariance += (r - mean) * (r - mean).transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(covariance);
+  d = es.eigenvectors().col(0);
+  d = d.dot(mean) < 0.0 ? Vec3(-d) : d;
+  cosAlpha = d.dot(mean);
+  return cosAlpha > 0.05 && cosAlpha < 1.0 - 1e-9 && d.z() > 0.0 &&
+    es.eigenvalues()(1) > 1e-6 * es.eigenvalues()(2);
+}
+
+bool ConeEllipse(const Intrinsics& k, const Vec2* undistorted, std::size_t n, Ellipse& e)
+{
+  std::vector<Vec3> rays(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    rays[i] = RayOf(k, undistorted[i]);
+  }
+  Vec3 d;
+  double cosAlpha = 0.0;
+  if (!ConeOfRays(rays, d, cosAlpha))
+  {
+    return false;
+  }
+  Mat3 K;
+  K << k.fx, k.skew, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0;
+  const Mat3 inverse = K.inverse();
+  const Mat3 Q =
+    inverse.transpose() * (d * d.transpose() - cosAlpha * cosAlpha * Mat3::Identity()) * inverse;
+  return EllipseOf(Q / Q.norm(), e) == ConicKind::Ellipse;
+}
+
 // Is the ellipse about the size and shape of the guess (a RANSAC's model near it)?
 bool Similar(const Ellipse& e, const Ellipse& guess)
 {
@@ -237,8 +302,8 @@ bool Similar(const Ellipse& e, const Ellipse& guess)
 // RANSAC with five-point conics among the edge points near a guessed ellipse (within a band of a
 // few pixels, their edges along it), then least squares on the inliers: the ellipse and its
 // inliers (within 1 pixel, their edges along it). False when too few points support one.
-bool RefineByRansac(const Ellipse& guess, const std::vector<EdgePoint>& points, Ellipse& refined,
-  std::vector<std::size_t>& bestInliers)
+bool RefineByRansac(const Intrinsics& k, const Ellipse& guess, const std::vector<EdgePoint>& points,
+  Ellipse& refined, std::vector<std::size_t>& bestInliers)
 {
   const double band = std::max(4.0, 0.03 * std::sqrt(guess.a * guess.b));
   std::vector<std::size_t> near;
@@ -274,22 +339,20 @@ bool RefineByRansac(const Ellipse& guess, const std::vector<EdgePoint>& points, 
   inliersOf(refined.Q, bestInliers);
   for (int iteration = 0; iteration < 400; ++iteration)
   {
-    std::array<Vec2, 5> sample;
-    std::array<std::size_t, 5> chosen{};
-    for (std::size_t k = 0; k < 5; ++k)
+    std::array<Vec2, 3> sample;
+    std::array<std::size_t, 3> chosen{};
+    for (std::size_t j = 0; j < 3; ++j)
     {
       std::size_t i = 0;
       do
       {
         i = pick(random);
-      } while (std::find(chosen.begin(), chosen.begin() + k, i) != chosen.begin() + k);
-      chosen[k] = i;
-      sample[k] = points[near[i]].undistorted;
+      } while (std::find(chosen.begin(), chosen.begin() + j, i) != chosen.begin() + j);
+      chosen[j] = i;
+      sample[j] = points[near[i]].undistorted;
     }
-    Mat3 q;
     Ellipse e;
-    if (!FitConic(sample.data(), sample.size(), q) || EllipseOf(q, e) != ConicKind::Ellipse ||
-      !Similar(e, guess))
+    if (!ConeEllipse(k, sample.data(), sample.size(), e) || !Similar(e, guess))
     {
       continue;
     }
@@ -308,10 +371,8 @@ bool RefineByRansac(const Ellipse& guess, const std::vector<EdgePoint>& points, 
     {
       fitted.push_back(points[i].undistorted);
     }
-    Mat3 q;
     Ellipse e;
-    if (!FitConic(fitted.data(), fitted.size(), q) || EllipseOf(q, e) != ConicKind::Ellipse ||
-      !Similar(e, guess))
+    if (!ConeEllipse(k, fitted.data(), fitted.size(), e) || !Similar(e, guess))
     {
       break;
     }
@@ -411,10 +472,9 @@ bool StrongEdgeEllipse(
   std::vector<std::vector<Vec2>> pieces;
   std::vector<Ellipse> candidates;
   const auto addCandidate = [&](const std::vector<Vec2>& group) {
-    Mat3 conic;
     Ellipse e;
-    if (group.size() < kMinPiece || !FitConic(group.data(), group.size(), conic) ||
-      EllipseOf(conic, e) != ConicKind::Ellipse || !Plausible(e, diagonal))
+    if (group.size() < kMinPiece ||
+      !ConeEllipse(camera.intrinsics, group.data(), group.size(), e) || !Plausible(e, diagonal))
     {
       return;
     }
@@ -512,7 +572,7 @@ bool StrongEdgeEllipse(
       }
       tried.push_back(&guess);
       Found f;
-      if (!RefineByRansac(guess, points, f.ellipse, f.inliers))
+      if (!RefineByRansac(camera.intrinsics, guess, points, f.ellipse, f.inliers))
       {
         continue;
       }
@@ -520,7 +580,7 @@ bool StrongEdgeEllipse(
         BinsInImage(f.ellipse, undistort, width, height, kMargin), kInlierPixels, 0.7);
       f.inside = s.bins;
       f.length = s.length;
-      if (s.bins > 0 && s.covered >= 0.5 * s.bins && s.length > best.length)
+      if (s.bins > 0 && s.covered >= 0.35 * s.bins && s.length > best.length)
       {
         best = std::move(f);
       }
@@ -546,6 +606,105 @@ bool StrongEdgeEllipse(
   found = whole.ellipse;
   return true;
 }
+// The points of one sphere's outline among the rim's: the right circular cone (from the camera
+// centre) that most of them lie on, found by a RANSAC with cones through three points' rays (a
+// dome's cut is a circle seen aslant: no such cone), then refitted to those near it (within
+// three times their spread, at most 1.5 px) three times; the last points near each end of its
+// arcs are left out. `k`: the intrinsics of the undistorted pixels.
+void ConeConsensus(const Intrinsics& k, const std::vector<Vec2>& pixels,
+  const std::vector<Vec2>& undistorted, std::vector<Vec2>& keptPixels,
+  std::vector<Vec2>& keptUndistorted)
+{
+  keptPixels.clear();
+  keptUndistorted.clear();
+  std::vector<Vec3> rays;
+  rays.reserve(undistorted.size());
+  for (const Vec2& u : undistorted)
+  {
+    rays.push_back(RayOf(k, u));
+  }
+  const double pixel = 1.0 / std::max(k.fx, k.fy); // radians
+  std::vector<std::size_t> best, inliers;
+  const auto near = [&](const Vec3& axis, double alpha, double tolerance,
+                      std::vector<std::size_t>& found, std::vector<double>* residuals) {
+    found.clear();
+    for (std::size_t i = 0; i < rays.size(); ++i)
+    {
+      const double r =
+        std::abs(std::acos(std::clamp(axis.dot(rays[i]), -1.0, 1.0)) - alpha) / pixel;
+      if (r < tolerance)
+      {
+        found.push_back(i);
+        if (residuals)
+        {
+          residuals->push_back(r);
+        }
+      }
+    }
+  };
+  std::mt19937 random(20261128u);
+  std::uniform_int_distribution<std::size_t> pick(0, rays.size() - 1);
+  for (int iteration = 0; iteration < 500 && rays.size() >= 20; ++iteration)
+  {
+    Vec3 axis;
+    double cosAlpha = 0.0;
+    if (!ConeOfRays({ rays[pick(random)], rays[pick(random)], rays[pick(random)] }, axis, cosAlpha))
+    {
+      continue;
+    }
+    near(axis, std::acos(cosAlpha), 1.5, inliers, nullptr);
+    if (inliers.size() > best.size())
+    {
+      best.swap(inliers);
+    }
+  }
+  for (int pass = 0; pass < 3 && best.size() >= 20; ++pass)
+  {
+    std::vector<Vec3> chosen;
+    chosen.reserve(best.size());
+    for (std::size_t i : best)
+    {
+      chosen.push_back(rays[i]);
+    }
+    Vec3 axis;
+    double cosAlpha = 0.0;
+    std::vector<double> residuals;
+    if (!ConeOfRays(chosen, axis, cosAlpha))
+    {
+      break;
+    }
+    near(axis, std::acos(cosAlpha), 1e9, inliers, &residuals);
+    std::vector<double> sorted = residuals;
+    std::nth_element(sorted.begin(),
+      sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double spread = 1.4826 * sorted[sorted.size() / 2];
+    near(axis, std::acos(cosAlpha), std::clamp(3.0 * spread, 0.6, 1.5), best, nullptr);
+  }
+  // Where the outline leaves the cone (a dome's limb meets its cut), the rim's points were
+  // smoothed along the rim with those beyond: the last ones near each end are left out.
+  std::vector<bool> on(rays.size(), false);
+  for (std::size_t i : best)
+  {
+    on[i] = true;
+  }
+  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(rays.size());
+  const std::ptrdiff_t reach = static_cast<std::ptrdiff_t>(kEndTrim);
+  for (std::size_t i : best)
+  {
+    bool inner = true;
+    for (std::ptrdiff_t j = -reach; j <= reach && inner; ++j)
+    {
+      inner = on[static_cast<std::size_t>(
+        ((static_cast<std::ptrdiff_t>(i) + j) % count + count) % count)];
+    }
+    if (inner || best.size() < 4 * kEndTrim)
+    {
+      keptPixels.push_back(pixels[i]);
+      keptUndistorted.push_back(undistorted[i]);
+    }
+  }
+}
+
 } // namespace
 
 bool DetectMirrorOutline(const Intrinsics& intrinsics, int width, int height,
@@ -641,70 +800,61 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
   }
 
   // The rim along the normals of that ellipse: it may lie outside it, where the mirror reflects
-  // the backdrop at its rim with less contrast than its reflection's own edges inside.
+  // the backdrop at its rim with less contrast than its reflection's own edges inside. The points
+  // of one sphere's outline among the rim's (ConeConsensus), and the rim searched again near
+  // their cone, where the first search took an edge inside the rim over part of it.
   const Undistorter coarseLens(coarse);
-  std::vector<Vec2> rimPixels, rimUndistorted;
+  const Intrinsics& c = coarse.intrinsics;
+  std::vector<Vec2> rimPixels, rimUndistorted, conePixels, coneUndistorted;
   RimReport rim;
   RimSearch search;
   search.outside = std::max(6.0, 0.25 * guess.b);
-  if (!RimFromProfiles(rgb, coarseLens, guess, search, rimPixels, rimUndistorted, rim, error))
+  for (int pass = 0; pass < 2; ++pass)
   {
-    return false;
+    if (!RimFromProfiles(rgb, coarseLens, guess, search, rimPixels, rimUndistorted, rim, error))
+    {
+      return false;
+    }
+    ConeConsensus(c, rimPixels, rimUndistorted, conePixels, coneUndistorted);
+    if (pass == 0 && !ConeEllipse(c, coneUndistorted.data(), coneUndistorted.size(), guess))
+    {
+      error = "no mirror outline found: the rim's points do not lie on a sphere's outline";
+      return false;
+    }
+    search.outside = 6.0;
   }
   const Undistorter undistort(camera);
   if (scale < 1.0)
   {
     // On the whole frame, near the rim found: the reduced frame's undistorted pixels are the
     // whole one's through the normalised coordinates.
-    const Intrinsics& c = coarse.intrinsics;
     const Intrinsics& f = camera.intrinsics;
     std::vector<Vec2> whole;
-    for (const Vec2& u : rimUndistorted)
+    for (const Vec2& u : coneUndistorted)
     {
       const double y = (u.y() - c.cy) / c.fy;
       const double x = (u.x() - c.cx - c.skew * y) / c.fx;
       whole.push_back(Vec2(f.fx * x + f.skew * y + f.cx, f.fy * y + f.cy));
     }
-    Mat3 conic;
     Ellipse rimEllipse;
-    if (whole.size() < 20 || !FitConic(whole.data(), whole.size(), conic) ||
-      EllipseOf(conic, rimEllipse) != ConicKind::Ellipse)
+    if (whole.size() < 20 || !ConeEllipse(f, whole.data(), whole.size(), rimEllipse))
     {
-      error = "no mirror outline found: the rim's points do not lie on an ellipse";
+      error = "no mirror outline found: the rim's points do not lie on a sphere's outline";
       return false;
     }
     RimSearch near;
     near.inside = near.outside = 2.0 + 2.0 / scale;
     near.alongSigma = search.alongSigma / scale;
     near.place = true;
-    if (!RimFromProfiles(
-          frame, undistort, rimEllipse, near, rimPixels, rimUndistorted, rim, error))
+    near.feet = &whole;
+    if (!RimFromProfiles(frame, undistort, rimEllipse, near, rimPixels, rimUndistorted, rim, error))
     {
       return false;
     }
+    ConeConsensus(camera.intrinsics, rimPixels, rimUndistorted, conePixels, coneUndistorted);
   }
-  std::vector<Vec2> refined, refinedUndistorted;
-  for (int pass = 0; pass < 3; ++pass)
-  {
-    Mat3 conic;
-    Ellipse e;
-    const std::vector<Vec2>& from = pass == 0 ? rimUndistorted : refinedUndistorted;
-    if (from.size() < 20 || !FitConic(from.data(), from.size(), conic) ||
-      EllipseOf(conic, e) != ConicKind::Ellipse)
-    {
-      break;
-    }
-    refined.clear();
-    refinedUndistorted.clear();
-    for (std::size_t i = 0; i < rimUndistorted.size(); ++i)
-    {
-      if (SampsonDistance(e.Q, rimUndistorted[i]) < kInlierPixels)
-      {
-        refined.push_back(rimPixels[i]);
-        refinedUndistorted.push_back(rimUndistorted[i]);
-      }
-    }
-  }
+  std::vector<Vec2>& refined = conePixels;
+  std::vector<Vec2>& refinedUndistorted = coneUndistorted;
   Mat3 finalConic;
   Ellipse outline;
   if (refined.size() < 20 ||

@@ -40,14 +40,15 @@ constexpr double kStep = 0.5;        // spacing of the samples along a normal, p
 constexpr double kFineSigma = 1.0;   // smoothing across the rim to place it, pixels
 constexpr double kPeakSigmas = 5.0;  // an edge: the derivative beyond this many noise sigmas
 constexpr double kMinPeak = 0.5;     // and at least this (grey levels per pixel)
-constexpr double kMinCovered = 0.5;  // a rim: edges on at least this fraction of the normals
+constexpr double kMinCovered = 0.35; // a rim: edges on at least this fraction of the normals
+constexpr double kMinLayer = 0.2;    // a closed edge: on at least this fraction
 constexpr int kGap = 4;              // samples between one closed edge and the next outside it
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // The mean of the first three channels of an 8-bit RGB or RGBA image at a pixel (bilinear); NaN
 // outside.
-template <int Channels>
+template<int Channels>
 float Grey(const cv::Mat& image, const Vec2& p)
 {
   const double x = p.x(), y = p.y();
@@ -211,8 +212,26 @@ bool RimFromProfiles(const cv::Mat& image, const Undistorter& lens, const Ellips
   pixels.clear();
   undistorted.clear();
   report = RimReport{};
-  const double perimeter = 2.0 * kPi * std::sqrt(0.5 * (guess.a * guess.a + guess.b * guess.b));
-  const int n = std::clamp(static_cast<int>(perimeter / 2.0), 180, 4096);
+  double perimeter = 2.0 * kPi * std::sqrt(0.5 * (guess.a * guess.a + guess.b * guess.b));
+  int n = std::clamp(static_cast<int>(perimeter / 2.0), 180, 4096);
+  if (search.feet)
+  {
+    // Normals at given points along the rim: the arc between them is their mean spacing.
+    n = static_cast<int>(search.feet->size());
+    perimeter = 0.0;
+    for (int i = 1; i < n; ++i)
+    {
+      perimeter += ((*search.feet)[static_cast<std::size_t>(i)] -
+        (*search.feet)[static_cast<std::size_t>(i - 1)])
+                     .norm();
+    }
+    perimeter *= n > 1 ? static_cast<double>(n) / (n - 1) : 1.0;
+    if (n < 20 || !(perimeter > 0.0))
+    {
+      error = "no mirror rim found: too few points to place it from";
+      return false;
+    }
+  }
   const double inside = std::min(search.inside, 0.5 * guess.b);
   const int m = static_cast<int>((inside + search.outside) / kStep) + 1;
   std::vector<Vec2> foot(static_cast<std::size_t>(n)), normal(static_cast<std::size_t>(n));
@@ -220,7 +239,8 @@ bool RimFromProfiles(const cv::Mat& image, const Undistorter& lens, const Ellips
   std::vector<bool> usable(static_cast<std::size_t>(n), false);
   for (int i = 0; i < n; ++i)
   {
-    const Vec2 p = guess.At(2.0 * kPi * i / n);
+    const Vec2 p =
+      search.feet ? (*search.feet)[static_cast<std::size_t>(i)] : guess.At(2.0 * kPi * i / n);
     Vec2 g;
     SampsonDistance(guess.Q, p, &g);
     if ((p - guess.centre).dot(g) < 0.0)
@@ -273,8 +293,7 @@ bool RimFromProfiles(const cv::Mat& image, const Undistorter& lens, const Ellips
     magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(half), magnitudes.end());
   report.noise = 1.4826 * magnitudes[half];
   // Placing a rim known to lie in the band: every peak counts, the strongest is the rim.
-  const double threshold =
-    search.place ? 0.0 : std::max(kPeakSigmas * report.noise, kMinPeak);
+  const double threshold = search.place ? 0.0 : std::max(kPeakSigmas * report.noise, kMinPeak);
 
   // Edges: the derivative's peaks (across the rim) above the threshold.
   Grid peak(n, m, 0.0f), score(n, m, -0.3f);
@@ -340,6 +359,11 @@ bool RimFromProfiles(const cv::Mat& image, const Undistorter& lens, const Ellips
       rim.clear();
     }
   }
+  // Closed edges from the inside out (each wholly outside the last) while one shows on at least
+  // kMinLayer of the normals; on each normal the rim is the outermost of them that shows there
+  // (a dome's limb runs round only part of the first ellipse; its cut, elsewhere, is no cone and
+  // the outline's fit leaves it out).
+  int layers = 0;
   for (int layer = 0; layer < 8 && !search.place; ++layer)
   {
     const std::vector<int> path = StrongestPath(score, lowest);
@@ -348,26 +372,39 @@ bool RimFromProfiles(const cv::Mat& image, const Undistorter& lens, const Ellips
       break;
     }
     int covered = 0;
+    std::vector<int> found(static_cast<std::size_t>(n), -1);
     for (int i = 0; i < n; ++i)
     {
-      covered +=
-        usable[static_cast<std::size_t>(i)] && peakNear(i, path[static_cast<std::size_t>(i)]) >= 0;
+      const std::size_t ii = static_cast<std::size_t>(i);
+      found[ii] = usable[ii] ? peakNear(i, path[ii]) : -1;
+      covered += found[ii] >= 0;
     }
-    if (covered < kMinCovered * report.angles)
+    if (covered < kMinLayer * report.angles)
     {
       break;
     }
-    rim = path;
-    rimCovered = covered;
+    ++layers;
+    rim.resize(static_cast<std::size_t>(n), -1);
     for (int i = 0; i < n; ++i)
     {
-      lowest[static_cast<std::size_t>(i)] =
-        std::min(path[static_cast<std::size_t>(i)] + kGap, m - 1);
+      const std::size_t ii = static_cast<std::size_t>(i);
+      rim[ii] = found[ii] >= 0 ? found[ii] : rim[ii];
+      lowest[ii] = std::min(path[ii] + kGap, m - 1);
+    }
+  }
+  if (!search.place)
+  {
+    rimCovered =
+      static_cast<int>(std::count_if(rim.begin(), rim.end(), [](int k) { return k >= 0; }));
+    if (layers == 0 || rimCovered < kMinCovered * report.angles)
+    {
+      rim.clear();
     }
   }
   if (rim.empty())
   {
-    error = "no mirror rim found: edges run round less than half of the outline";
+    error = "no mirror rim found: edges run round less than " +
+      std::to_string(static_cast<int>(100.0 * kMinCovered)) + " % of the outline";
     return false;
   }
   report.covered = rimCovered;

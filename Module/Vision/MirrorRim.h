@@ -48,6 +48,9 @@ struct RimSearch
   /// The rim is known to lie in the band (found on a reduced frame): on each normal the strongest
   /// edge is taken, with no noise threshold and no search for closed edges.
   bool place = false;
+  /// Where given (points in order along the rim, undistorted pixels): the normals start there,
+  /// along the first ellipse's normal, instead of every 2 px round the whole ellipse.
+  const std::vector<Vec2>* feet = nullptr;
 };
 
 /// The mirror's rim near a first ellipse `guess` (undistorted pixels; what the image's strong
