@@ -39,24 +39,27 @@ struct SphereOutlineReport
 
 /// Finds the outline of the mirror in a camera frame of width x height RGBA8 pixels (row 0 at
 /// the top, no padding; alpha is not used): the boundary between the mirror's image and what
-/// surrounds it. Edges (Canny on the lightly blurred colour image) are traced into contours, which
-/// are also cut into smooth pieces where other edges cross them; conics fitted to contours, pieces
-/// and pairs of the longest pieces propose ellipses (in undistorted pixels, where a sphere's
-/// outline is one). The few proposals that the edges cover along the greatest length of their
-/// perimeter are each refined by a RANSAC with a five-point conic model among the edge points
-/// near them (dropping the reflection's own edges along the rim); the refined ellipse that the
-/// edges cover along the greatest length is the outline. Its edge points are then placed between
-/// pixels (the gradient maximum along the image axis nearest the edge's normal, parabolic fit).
+/// surrounds it, as the image of a sphere's limb is: a right circular cone of rays from the camera
+/// centre. A first guess from the strong edges (Canny on the lightly blurred colour image; contours
+/// and smooth pieces of them, and pairs of pieces, fitted with such cones; the few the edges cover
+/// along the greatest length refined by a RANSAC with cones through three edge points' rays; the
+/// one covered along the greatest length). Then the rim along the guess's normals: the outermost
+/// closed edge on each (profiles smoothed along the rim, so a rim of little contrast, as a real
+/// mirror shows before a dark backdrop that it reflects at grazing angles, is found outside the
+/// reflection's stronger edges), the points of one right circular cone among them (a RANSAC; a
+/// dome's cut is left out), the rim searched again near that cone and its points placed along the
+/// normals (between samples). Frames larger than 1024 px a side are searched reduced, and the rim
+/// placed on the whole frame. See Documentation/mirror-outline.md.
 /// outlinePixels: the outline points (pixel (0,0) is the centre of the top-left pixel), in the
-/// image as it is (distorted). The camera's intrinsics must be for an image of this size; its
-/// distortion (CameraModel overload) is undone before the conic models are fitted, and its mirror
-/// is not used. False, with a sentence in `error`, for an empty or blank (uniform) image, an image
-/// of another size than the intrinsics', no outline found, or an outline that lies on or beyond
-/// the image border over more than half its length (the mirror is cut by the frame).
-/// Accuracy: on rendered frames with a plain surround, the points lie within about 0.1 pixel of
-/// the outline on average. Where the surround continues into the rim (a perfect mirror reflects,
-/// at grazing angles, what lies behind it), the boundary found is where the reflection first
-/// differs, which may be a few pixels inside the true outline.
+/// image as it is (distorted), every 2 to 3 px where the rim shows. The camera's intrinsics must be
+/// for an image of this size; its distortion (CameraModel overload) is undone before the cones are
+/// fitted, and its mirror is not used. False, with a sentence in `error`, for an empty or blank
+/// (uniform) image, an image of another size than the intrinsics', no outline found (or a rim that
+/// shows on less than about a third of it), or an outline that lies on or beyond the image border
+/// over more than half its length (the mirror is cut by the frame).
+/// Accuracy: on POV-Ray's frames of a mirror of reflectance 0.7 before bright and dark backdrops,
+/// spheres and domes, clean and noisy, the centre found from the points is within 0.041-0.074 % of
+/// its distance.
 bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const std::uint8_t* rgba,
   std::vector<Vec2>& outlinePixels, std::string& error);
 /// The same for a camera without lens distortion.
