@@ -62,6 +62,17 @@ struct SphereOutlineReport
 /// its distance.
 bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const std::uint8_t* rgba,
   std::vector<Vec2>& outlinePixels, std::string& error);
+/// What DetectMirrorOutline looks for.
+struct MirrorOutlineOptions
+{
+  /// True: a sphere's limb, the image of a right circular cone of rays from the camera centre
+  /// (a sphere, a dome's limb). False: any ellipse, as a circular rim seen aslant makes (a quadric
+  /// mirror's rim: QuadricFromRim).
+  bool limb = true;
+};
+/// The same with options.
+bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const std::uint8_t* rgba,
+  const MirrorOutlineOptions& options, std::vector<Vec2>& outlinePixels, std::string& error);
 /// The same for a camera without lens distortion.
 bool DetectMirrorOutline(const Intrinsics& intrinsics, int width, int height,
   const std::uint8_t* rgba, std::vector<Vec2>& outlinePixels, std::string& error);

@@ -293,6 +293,25 @@ bool ConeEllipse(const Intrinsics& k, const Vec2* undistorted, std::size_t n, El
   return EllipseOf(Q / Q.norm(), e) == ConicKind::Ellipse;
 }
 
+// What an outline is: a sphere's limb (the image of a right circular cone of rays from the camera
+// centre, fitted as in ConeEllipse) or, for a circular rim seen aslant, any ellipse (a conic
+// fitted to the points).
+struct OutlineModel
+{
+  Intrinsics k;
+  bool limb = true;
+  std::size_t SampleSize() const { return this->limb ? 3 : 5; }
+  bool Fit(const Vec2* undistorted, std::size_t n, Ellipse& e) const
+  {
+    if (this->limb)
+    {
+      return ConeEllipse(this->k, undistorted, n, e);
+    }
+    Mat3 conic;
+    return FitConic(undistorted, n, conic) && EllipseOf(conic, e) == ConicKind::Ellipse;
+  }
+};
+
 // Is the ellipse about the size and shape of the guess (a RANSAC's model near it)?
 bool Similar(const Ellipse& e, const Ellipse& guess)
 {
@@ -302,8 +321,8 @@ bool Similar(const Ellipse& e, const Ellipse& guess)
 // RANSAC with five-point conics among the edge points near a guessed ellipse (within a band of a
 // few pixels, their edges along it), then least squares on the inliers: the ellipse and its
 // inliers (within 1 pixel, their edges along it). False when too few points support one.
-bool RefineByRansac(const Intrinsics& k, const Ellipse& guess, const std::vector<EdgePoint>& points,
-  Ellipse& refined, std::vector<std::size_t>& bestInliers)
+bool RefineByRansac(const OutlineModel& model, const Ellipse& guess,
+  const std::vector<EdgePoint>& points, Ellipse& refined, std::vector<std::size_t>& bestInliers)
 {
   const double band = std::max(4.0, 0.03 * std::sqrt(guess.a * guess.b));
   std::vector<std::size_t> near;
@@ -339,9 +358,10 @@ bool RefineByRansac(const Intrinsics& k, const Ellipse& guess, const std::vector
   inliersOf(refined.Q, bestInliers);
   for (int iteration = 0; iteration < 400; ++iteration)
   {
-    std::array<Vec2, 3> sample;
-    std::array<std::size_t, 3> chosen{};
-    for (std::size_t j = 0; j < 3; ++j)
+    std::array<Vec2, 5> sample;
+    std::array<std::size_t, 5> chosen{};
+    const std::size_t size = model.SampleSize();
+    for (std::size_t j = 0; j < size; ++j)
     {
       std::size_t i = 0;
       do
@@ -352,7 +372,7 @@ bool RefineByRansac(const Intrinsics& k, const Ellipse& guess, const std::vector
       sample[j] = points[near[i]].undistorted;
     }
     Ellipse e;
-    if (!ConeEllipse(k, sample.data(), sample.size(), e) || !Similar(e, guess))
+    if (!model.Fit(sample.data(), size, e) || !Similar(e, guess))
     {
       continue;
     }
@@ -372,7 +392,7 @@ bool RefineByRansac(const Intrinsics& k, const Ellipse& guess, const std::vector
       fitted.push_back(points[i].undistorted);
     }
     Ellipse e;
-    if (!ConeEllipse(k, fitted.data(), fitted.size(), e) || !Similar(e, guess))
+    if (!model.Fit(fitted.data(), fitted.size(), e) || !Similar(e, guess))
     {
       break;
     }
@@ -390,9 +410,10 @@ bool RefineByRansac(const Intrinsics& k, const Ellipse& guess, const std::vector
 // length: the mirror's outline, or an edge of its reflection just inside it. `rgb`: 8-bit RGB of
 // the camera's size.
 bool StrongEdgeEllipse(
-  const CameraModel& camera, const cv::Mat& rgb, Ellipse& found, std::string& error)
+  const CameraModel& camera, bool limb, const cv::Mat& rgb, Ellipse& found, std::string& error)
 {
   const int width = rgb.cols, height = rgb.rows;
+  const OutlineModel model{ camera.intrinsics, limb };
   // The edges' strength and normals (Canny's thresholds, the edges' directions) on the image
   // blurred with sigma 1; the strength again with less blur for the sub-pixel positions, which the
   // reflection's own edges just inside the rim pull less.
@@ -473,8 +494,8 @@ bool StrongEdgeEllipse(
   std::vector<Ellipse> candidates;
   const auto addCandidate = [&](const std::vector<Vec2>& group) {
     Ellipse e;
-    if (group.size() < kMinPiece ||
-      !ConeEllipse(camera.intrinsics, group.data(), group.size(), e) || !Plausible(e, diagonal))
+    if (group.size() < kMinPiece || !model.Fit(group.data(), group.size(), e) ||
+      !Plausible(e, diagonal))
     {
       return;
     }
@@ -572,7 +593,7 @@ bool StrongEdgeEllipse(
       }
       tried.push_back(&guess);
       Found f;
-      if (!RefineByRansac(camera.intrinsics, guess, points, f.ellipse, f.inliers))
+      if (!RefineByRansac(model, guess, points, f.ellipse, f.inliers))
       {
         continue;
       }
@@ -606,32 +627,24 @@ bool StrongEdgeEllipse(
   found = whole.ellipse;
   return true;
 }
-// The points of one sphere's outline among the rim's: the right circular cone (from the camera
-// centre) that most of them lie on, found by a RANSAC with cones through three points' rays (a
-// dome's cut is a circle seen aslant: no such cone), then refitted to those near it (within
-// three times their spread, at most 1.5 px) three times; the last points near each end of its
-// arcs are left out. `k`: the intrinsics of the undistorted pixels.
-void ConeConsensus(const Intrinsics& k, const std::vector<Vec2>& pixels,
+// The points of one outline among the rim's: the model's ellipse (a right circular cone's, or
+// any) that most of them lie near, found by a RANSAC with the model through a few of them (three
+// rays fix a cone, five points a conic; a dome's cut is a circle seen aslant: no right circular
+// cone), then refitted to those near it (within three times their spread, from 0.6 to 1.5 px)
+// three times; the last points near each end of its arcs are left out.
+void OutlineConsensus(const OutlineModel& model, const std::vector<Vec2>& pixels,
   const std::vector<Vec2>& undistorted, std::vector<Vec2>& keptPixels,
   std::vector<Vec2>& keptUndistorted)
 {
   keptPixels.clear();
   keptUndistorted.clear();
-  std::vector<Vec3> rays;
-  rays.reserve(undistorted.size());
-  for (const Vec2& u : undistorted)
-  {
-    rays.push_back(RayOf(k, u));
-  }
-  const double pixel = 1.0 / std::max(k.fx, k.fy); // radians
   std::vector<std::size_t> best, inliers;
-  const auto near = [&](const Vec3& axis, double alpha, double tolerance,
-                      std::vector<std::size_t>& found, std::vector<double>* residuals) {
+  const auto near = [&](const Ellipse& e, double tolerance, std::vector<std::size_t>& found,
+                      std::vector<double>* residuals) {
     found.clear();
-    for (std::size_t i = 0; i < rays.size(); ++i)
+    for (std::size_t i = 0; i < undistorted.size(); ++i)
     {
-      const double r =
-        std::abs(std::acos(std::clamp(axis.dot(rays[i]), -1.0, 1.0)) - alpha) / pixel;
+      const double r = SampsonDistance(e.Q, undistorted[i]);
       if (r < tolerance)
       {
         found.push_back(i);
@@ -643,16 +656,20 @@ void ConeConsensus(const Intrinsics& k, const std::vector<Vec2>& pixels,
     }
   };
   std::mt19937 random(20261128u);
-  std::uniform_int_distribution<std::size_t> pick(0, rays.size() - 1);
-  for (int iteration = 0; iteration < 500 && rays.size() >= 20; ++iteration)
+  std::uniform_int_distribution<std::size_t> pick(0, undistorted.size() - 1);
+  std::vector<Vec2> sample(model.SampleSize());
+  for (int iteration = 0; iteration < 500 && undistorted.size() >= 20; ++iteration)
   {
-    Vec3 axis;
-    double cosAlpha = 0.0;
-    if (!ConeOfRays({ rays[pick(random)], rays[pick(random)], rays[pick(random)] }, axis, cosAlpha))
+    for (Vec2& p : sample)
+    {
+      p = undistorted[pick(random)];
+    }
+    Ellipse e;
+    if (!model.Fit(sample.data(), sample.size(), e))
     {
       continue;
     }
-    near(axis, std::acos(cosAlpha), 1.5, inliers, nullptr);
+    near(e, 1.5, inliers, nullptr);
     if (inliers.size() > best.size())
     {
       best.swap(inliers);
@@ -660,34 +677,33 @@ void ConeConsensus(const Intrinsics& k, const std::vector<Vec2>& pixels,
   }
   for (int pass = 0; pass < 3 && best.size() >= 20; ++pass)
   {
-    std::vector<Vec3> chosen;
+    std::vector<Vec2> chosen;
     chosen.reserve(best.size());
     for (std::size_t i : best)
     {
-      chosen.push_back(rays[i]);
+      chosen.push_back(undistorted[i]);
     }
-    Vec3 axis;
-    double cosAlpha = 0.0;
+    Ellipse e;
     std::vector<double> residuals;
-    if (!ConeOfRays(chosen, axis, cosAlpha))
+    if (!model.Fit(chosen.data(), chosen.size(), e))
     {
       break;
     }
-    near(axis, std::acos(cosAlpha), 1e9, inliers, &residuals);
+    near(e, 1e9, inliers, &residuals);
     std::vector<double> sorted = residuals;
     std::nth_element(sorted.begin(),
       sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
     const double spread = 1.4826 * sorted[sorted.size() / 2];
-    near(axis, std::acos(cosAlpha), std::clamp(3.0 * spread, 0.6, 1.5), best, nullptr);
+    near(e, std::clamp(3.0 * spread, 0.6, 1.5), best, nullptr);
   }
   // Where the outline leaves the cone (a dome's limb meets its cut), the rim's points were
   // smoothed along the rim with those beyond: the last ones near each end are left out.
-  std::vector<bool> on(rays.size(), false);
+  std::vector<bool> on(undistorted.size(), false);
   for (std::size_t i : best)
   {
     on[i] = true;
   }
-  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(rays.size());
+  const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(undistorted.size());
   const std::ptrdiff_t reach = static_cast<std::ptrdiff_t>(kEndTrim);
   for (std::size_t i : best)
   {
@@ -717,6 +733,13 @@ bool DetectMirrorOutline(const Intrinsics& intrinsics, int width, int height,
 
 bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const std::uint8_t* rgba,
   std::vector<Vec2>& outlinePixels, std::string& error)
+{
+  return DetectMirrorOutline(
+    camera, width, height, rgba, MirrorOutlineOptions(), outlinePixels, error);
+}
+
+bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const std::uint8_t* rgba,
+  const MirrorOutlineOptions& options, std::vector<Vec2>& outlinePixels, std::string& error)
 {
   outlinePixels.clear();
   if (!rgba || width <= 0 || height <= 0)
@@ -794,17 +817,19 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
     k.height = rgb.rows;
   }
   Ellipse guess;
-  if (!StrongEdgeEllipse(coarse, rgb, guess, error))
+  if (!StrongEdgeEllipse(coarse, options.limb, rgb, guess, error))
   {
     return false;
   }
 
   // The rim along the normals of that ellipse: it may lie outside it, where the mirror reflects
   // the backdrop at its rim with less contrast than its reflection's own edges inside. The points
-  // of one sphere's outline among the rim's (ConeConsensus), and the rim searched again near
+  // of one outline among the rim's (OutlineConsensus), and the rim searched again near
   // their cone, where the first search took an edge inside the rim over part of it.
   const Undistorter coarseLens(coarse);
   const Intrinsics& c = coarse.intrinsics;
+  const OutlineModel coarseModel{ c, options.limb };
+  const OutlineModel wholeModel{ camera.intrinsics, options.limb };
   std::vector<Vec2> rimPixels, rimUndistorted, conePixels, coneUndistorted;
   RimReport rim;
   RimSearch search;
@@ -815,8 +840,8 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
     {
       return false;
     }
-    ConeConsensus(c, rimPixels, rimUndistorted, conePixels, coneUndistorted);
-    if (pass == 0 && !ConeEllipse(c, coneUndistorted.data(), coneUndistorted.size(), guess))
+    OutlineConsensus(coarseModel, rimPixels, rimUndistorted, conePixels, coneUndistorted);
+    if (pass == 0 && !coarseModel.Fit(coneUndistorted.data(), coneUndistorted.size(), guess))
     {
       error = "no mirror outline found: the rim's points do not lie on a sphere's outline";
       return false;
@@ -837,7 +862,7 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
       whole.push_back(Vec2(f.fx * x + f.skew * y + f.cx, f.fy * y + f.cy));
     }
     Ellipse rimEllipse;
-    if (whole.size() < 20 || !ConeEllipse(f, whole.data(), whole.size(), rimEllipse))
+    if (whole.size() < 20 || !wholeModel.Fit(whole.data(), whole.size(), rimEllipse))
     {
       error = "no mirror outline found: the rim's points do not lie on a sphere's outline";
       return false;
@@ -851,7 +876,7 @@ bool DetectMirrorOutline(const CameraModel& camera, int width, int height, const
     {
       return false;
     }
-    ConeConsensus(camera.intrinsics, rimPixels, rimUndistorted, conePixels, coneUndistorted);
+    OutlineConsensus(wholeModel, rimPixels, rimUndistorted, conePixels, coneUndistorted);
   }
   std::vector<Vec2>& refined = conePixels;
   std::vector<Vec2>& refinedUndistorted = coneUndistorted;
