@@ -98,6 +98,61 @@ bool SphereFromOutline(const CameraModel& camera, double radius,
 std::vector<Vec2> SphereOutline(
   const CameraModel& camera, const Vec3& centre, double radius, int count);
 
+/// How a quadric mirror's rim explains the outline it was placed from (QuadricFromRim).
+struct RimOutlineReport
+{
+  int pointCount = 0;            ///< outline points used
+  double rimRadius = 0.0;        ///< the rim circle's radius
+  double rimZ = 0.0;             ///< its height in the mirror frame (an end of z_range)
+  Vec3 rimCentre = Vec3::Zero(); ///< its centre, camera frame
+  Vec3 axis = Vec3::UnitZ();     ///< the mirror's axis (its frame's z), camera frame
+  double rmsPixels = 0.0;        ///< RMS distance of the points from the fitted rim's image, pixels
+  double axisTurn = 0.0; ///< angle between the first guess's axis and the one found, radians
+  double shift = 0.0;    ///< distance between the first guess's rim centre and the one found
+  /// One sigma of the rim's centre (worst direction; the calibration's length unit) and of the
+  /// axis (radians; 0 when the axis was kept), from the fit's Jacobian and residuals with the
+  /// points taken as independent. A rim seen nearly head-on fixes its distance well and its tilt
+  /// poorly (a tilt and a shift across look alike): the axis sigma says how poorly.
+  double centreSigma = 0.0;
+  double axisSigma = 0.0;
+  /// When the other tilt a circle's image allows fits as well (within three sigmas of the
+  /// residuals; a circle seen through a pinhole has two poses that fit exactly), the angle between
+  /// the two axes (radians), else 0: the axis is then not known from the rim, only one of two (the
+  /// one nearer the guess is taken; the other is otherAxis).
+  double ambiguousTilt = 0.0;
+  Vec3 otherAxis = Vec3::Zero();
+  int iterations = 0; ///< Levenberg-Marquardt iterations
+};
+
+/// What QuadricFromRim fits.
+struct RimFitOptions
+{
+  /// True: the rim's centre and the mirror's axis (five numbers). False: the centre only, the
+  /// axis kept as the first guess has it (a rig built with the mirror's axis on the camera's).
+  bool fitAxis = true;
+};
+
+/// A quadric mirror of revolution (a hyperboloid, paraboloid, ellipsoid, cone or cut sphere about
+/// its frame's z axis) placed from its rim's outline: the circle where the surface meets the end
+/// of z_range where it is widest, whose image is the outline a camera looking into such a mirror
+/// sees. `mirror` gives the type, shape numbers and z_range (kept) and a first guess of
+/// mirror_to_camera (the nominal mounting), which is replaced: the rim's centre and normal (five
+/// numbers) are fitted to the outline points' rays by Levenberg-Marquardt from that guess (each
+/// ray's distance from the rim circle where it meets the rim's plane), and the mirror frame is
+/// turned as little as takes its axis to the normal found (its turn about the axis, which the rim
+/// cannot show, is the guess's). A circle's image fixes its pose up to a twofold choice of tilt
+/// (report.ambiguousTilt): where both fit, the one nearer the guess is taken; with
+/// RimFitOptions::fitAxis false the guess's axis is kept and the centre alone fitted. False, with a
+/// sentence in `error`, for an unusable camera, a mirror that is not a quadric of revolution with
+/// mirror_to_camera and z_range (or has no rim there), fewer than 5 points, a point beyond the
+/// distortion model's range, or a guess so far off that the rays miss its rim's plane.
+bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlinePixels,
+  MirrorDescription& mirror, RimOutlineReport& report, std::string& error);
+/// The same with options.
+bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlinePixels,
+  const RimFitOptions& options, MirrorDescription& mirror, RimOutlineReport& report,
+  std::string& error);
+
 /// The closed-form sphere mirror of that centre (camera frame) and radius, as a calibration holds
 /// it (the mirror SphereFromOutline found).
 MirrorDescription MirrorOfOutline(const Vec3& centre, double radius);
