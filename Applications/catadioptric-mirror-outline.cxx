@@ -1,11 +1,13 @@
 // catadioptric-mirror-outline: a spherical mirror's centre (camera frame) from its outline in a
-// camera frame (Module/Vision/MirrorOutline.h).
+// camera frame, or a quadric mirror's mounting from its rim (Module/Vision/MirrorOutline.h).
 //
-//   catadioptric-mirror-outline CALIBRATION IMAGE --radius R [-o OUT.yaml] [--overlay OUT.png]
-//                               [--max-rms PX]
+//   catadioptric-mirror-outline CALIBRATION IMAGE (--radius R | --rim [--keep-axis])
+//                               [-o OUT.yaml] [--overlay OUT.png] [--max-rms PX]
 //
-// The calibration gives the camera's intrinsics and distortion (its mirror is replaced by the
-// sphere found). Exit status: 0 success, 1 bad input or no outline, 2 usage error.
+// The calibration gives the camera's intrinsics and distortion; with --radius its mirror is
+// replaced by the sphere found, with --rim its quadric mirror's mirror_to_camera is the first
+// guess and is replaced. Exit status: 0 success, 1 bad input, no outline or a fit refused, 2 usage
+// error.
 #include "CalibrationIO.h"
 #include "MirrorOutline.h"
 
@@ -36,10 +38,10 @@ int Error(const std::string& message, int code = 1)
   return code;
 }
 
-// The image with the outline of the sphere found (red, anti-aliased) and the detected outline
+// The image with the outline fitted (red, anti-aliased; `fitted`, pixels) and the detected outline
 // points (green pixels) over it.
-bool WriteOverlay(const std::string& path, const cv::Mat& bgr, const catar::CameraModel& camera,
-  const std::vector<catar::Vec2>& points, const catar::Vec3& centre, double radius,
+bool WriteOverlay(const std::string& path, const cv::Mat& bgr,
+  const std::vector<catar::Vec2>& points, const std::vector<catar::Vec2>& fitted,
   std::string& error)
 {
   cv::Mat drawn = bgr.clone();
@@ -50,7 +52,7 @@ bool WriteOverlay(const std::string& path, const cv::Mat& bgr, const catar::Came
       static_cast<int>(std::lround(p.y() * (1 << kShift))));
   };
   std::vector<cv::Point> curve;
-  for (const catar::Vec2& p : catar::SphereOutline(camera, centre, radius, 720))
+  for (const catar::Vec2& p : fitted)
   {
     if (p.allFinite() && std::abs(p.x()) < 1e6 && std::abs(p.y()) < 1e6)
     {
@@ -89,21 +91,158 @@ bool WriteOverlay(const std::string& path, const cv::Mat& bgr, const catar::Came
 
 namespace
 {
+// The sphere of that radius from the outline points: printed, written, drawn.
+int SphereFromItsOutline(catar::CameraModel camera, const cv::Mat& bgr,
+  const std::vector<catar::Vec2>& points, double radius, double maxRms,
+  const std::string& imagePath, const std::string& output, const std::string& overlay)
+{
+  std::string error;
+  catar::Vec3 centre;
+  catar::SphereOutlineReport report;
+  if (!catar::SphereFromOutline(camera, radius, points, centre, report, error))
+  {
+    return Error(imagePath + ": " + error);
+  }
+  const std::vector<catar::Vec2> fitted = catar::SphereOutline(camera, centre, radius, 720);
+  if (!(report.rmsPixels <= maxRms))
+  {
+    if (!overlay.empty())
+    {
+      WriteOverlay(overlay, bgr, points, fitted, error);
+    }
+    char text[256];
+    std::snprintf(text, sizeof text,
+      "the outline found does not fit a sphere's: its %d points lie %.3g px (RMS) from the best "
+      "sphere's outline, more than --max-rms %.3g px (a wrong lens calibration, or an edge that "
+      "is not the mirror's rim%s)",
+      report.pointCount, report.rmsPixels, maxRms, overlay.empty() ? "" : ": see the overlay");
+    return Error(imagePath + ": " + text);
+  }
+  std::printf("centre: %.9g %.9g %.9g\n", centre.x(), centre.y(), centre.z());
+  std::printf("distance: %.9g\n", report.distance);
+  std::printf("outline points: %d\n", report.pointCount);
+  std::printf("rms: %.4g px\n", report.rmsPixels);
+
+  camera.mirror = catar::MirrorOfOutline(centre, radius);
+  if (!output.empty() && !catar::SaveCalibration(output, camera, error))
+  {
+    return Error(error);
+  }
+  if (!overlay.empty() && !WriteOverlay(overlay, bgr, points, fitted, error))
+  {
+    return Error(error);
+  }
+  return 0;
+}
+
+// The calibration's quadric mirror placed from its rim: printed, written, drawn; refused when
+// the rim fits two tilts (unless the axis is kept) or fits poorly.
+int PlaceFromRim(catar::CameraModel camera, const cv::Mat& bgr,
+  const std::vector<catar::Vec2>& points, bool keepAxis, double maxRms,
+  const std::string& imagePath, const std::string& output, const std::string& overlay)
+{
+  std::string error;
+  catar::RimFitOptions options;
+  options.fitAxis = !keepAxis;
+  catar::RimOutlineReport report;
+  catar::MirrorDescription mirror = camera.mirror;
+  if (!catar::QuadricFromRim(camera, points, options, mirror, report, error))
+  {
+    return Error(imagePath + ": " + error);
+  }
+  std::vector<catar::Vec2> fitted;
+  {
+    const catar::Vec3 e1 = report.axis.unitOrthogonal(), e2 = report.axis.cross(e1);
+    for (int k = 0; k < 720; ++k)
+    {
+      const double angle = 2.0 * 3.14159265358979323846 * k / 720.0;
+      const catar::Vec3 p =
+        report.rimCentre + report.rimRadius * (std::cos(angle) * e1 + std::sin(angle) * e2);
+      if (p.z() > 0.0)
+      {
+        fitted.push_back(camera.DirectionToPixel(p));
+      }
+    }
+  }
+  const auto refuse = [&](const std::string& why) {
+    if (!overlay.empty())
+    {
+      WriteOverlay(overlay, bgr, points, fitted, error);
+    }
+    return Error(imagePath + ": " + why);
+  };
+  constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+  char text[512];
+  if (!(report.rmsPixels <= maxRms))
+  {
+    std::snprintf(text, sizeof text,
+      "the outline found does not fit the mirror's rim: its %d points lie %.3g px (RMS) from the "
+      "best rim's image, more than --max-rms %.3g px (a wrong mirror shape or z_range, a wrong "
+      "lens calibration, or an edge that is not the rim)",
+      report.pointCount, report.rmsPixels, maxRms);
+    return refuse(text);
+  }
+  if (report.ambiguousTilt > 0.0)
+  {
+    const catar::Vec3& a = report.axis;
+    const catar::Vec3& b = report.otherAxis;
+    std::snprintf(text, sizeof text,
+      "the rim fits two tilts of the mirror %.3g degrees apart equally well (axis %.6f %.6f %.6f "
+      "or %.6f %.6f %.6f): a rim seen nearly head-on fixes its distance, not its tilt. With "
+      "--keep-axis the first guess's axis is kept and the rim's centre fitted",
+      report.ambiguousTilt * kDegrees, a.x(), a.y(), a.z(), b.x(), b.y(), b.z());
+    return refuse(text);
+  }
+  std::printf("rim centre: %.9g %.9g %.9g\n", report.rimCentre.x(), report.rimCentre.y(),
+    report.rimCentre.z());
+  std::printf("axis: %.9g %.9g %.9g%s\n", report.axis.x(), report.axis.y(), report.axis.z(),
+    keepAxis ? " (kept)" : "");
+  std::printf("rim radius: %.9g (z = %.9g in the mirror frame)\n", report.rimRadius, report.rimZ);
+  std::printf(
+    "one sigma: centre %.3g, axis %.3g degrees\n", report.centreSigma, report.axisSigma * kDegrees);
+  std::printf("moved from the first guess: %.3g, turned %.3g degrees\n", report.shift,
+    report.axisTurn * kDegrees);
+  std::printf("outline points: %d\n", report.pointCount);
+  std::printf("rms: %.4g px\n", report.rmsPixels);
+  camera.mirror = mirror;
+  if (!output.empty() && !catar::SaveCalibration(output, camera, error))
+  {
+    return Error(error);
+  }
+  if (!overlay.empty() && !WriteOverlay(overlay, bgr, points, fitted, error))
+  {
+    return Error(error);
+  }
+  return 0;
+}
+
 int Run(int argc, char* argv[])
 {
   CLI::App app("Finds a spherical mirror's centre (camera frame) from its outline in a camera "
                "frame: detects the outline, fits the sphere of the given radius and prints its "
                "centre, the number of outline points used and their RMS distance (pixels) from "
-               "the outline of the sphere found. The calibration gives the camera's intrinsics "
-               "and distortion; its mirror is replaced. Exit status: 0 success, 1 bad input or no "
-               "outline, 2 usage error.",
+               "the outline of the sphere found. With --rim, places the calibration's quadric "
+               "mirror of revolution (its mirror_to_camera the first guess) from its rim instead. "
+               "The calibration gives the camera's intrinsics and distortion. Exit status: 0 "
+               "success, 1 bad input, no outline or a fit refused, 2 usage error.",
     kProgram);
   std::string calibration, imagePath, output, overlay;
   double radius = 0.0;
   app.add_option("CALIBRATION", calibration, "calibration file (YAML or JSON)")->required();
   app.add_option("IMAGE", imagePath, "camera frame that shows the whole mirror")->required();
-  app.add_option("--radius", radius, "the sphere's radius, in the calibration's length unit")
-    ->required();
+  bool rim = false, keepAxis = false;
+  auto* radiusOption =
+    app.add_option("--radius", radius, "the sphere's radius, in the calibration's length unit");
+  auto* rimOption = app.add_flag("--rim", rim,
+    "place the calibration's quadric mirror of revolution (hyperboloid, paraboloid, ...) from "
+    "its rim, the circle at the widest end of its z_range; its mirror_to_camera is the first "
+    "guess");
+  rimOption->excludes(radiusOption);
+  app
+    .add_flag("--keep-axis", keepAxis,
+      "with --rim: keep the first guess's axis and fit the rim's centre only (a rim seen nearly "
+      "head-on fixes its distance, not its tilt)")
+    ->needs(rimOption);
   app.add_option(
     "-o,--output", output, "write the calibration with the mirror {type: sphere, center, radius}");
   app.add_option("--overlay", overlay,
@@ -120,7 +259,7 @@ int Run(int argc, char* argv[])
     return parsed;
   }
 
-  if (!(radius > 0.0) || !std::isfinite(radius))
+  if (!rim && (!(radius > 0.0) || !std::isfinite(radius)))
   {
     return Error("--radius must be a positive number (got " + std::to_string(radius) +
         "; run with --help for usage)",
@@ -129,8 +268,10 @@ int Run(int argc, char* argv[])
 
   catar::CameraModel camera;
   std::string error;
-  // The lens is what is needed: a calibration of the bare camera (no mirror) is read too.
-  if (!catar::LoadLensCalibration(calibration, camera, error))
+  // For a sphere the lens is what is needed: a calibration of the bare camera (no mirror) is read
+  // too. For a rim, the mirror is the first guess.
+  if (!(rim ? catar::LoadCalibration(calibration, camera, error)
+            : catar::LoadLensCalibration(calibration, camera, error)))
   {
     return Error(error);
   }
@@ -170,46 +311,16 @@ int Run(int argc, char* argv[])
   }
 
   std::vector<catar::Vec2> points;
+  catar::MirrorOutlineOptions options;
+  options.limb = !rim; // a rim seen aslant is any ellipse
   if (!catar::DetectMirrorOutline(
-        camera, rgba.cols, rgba.rows, rgba.ptr<std::uint8_t>(0), points, error))
+        camera, rgba.cols, rgba.rows, rgba.ptr<std::uint8_t>(0), options, points, error))
   {
     return Error(imagePath + ": " + error);
   }
-  catar::Vec3 centre;
-  catar::SphereOutlineReport report;
-  if (!catar::SphereFromOutline(camera, radius, points, centre, report, error))
-  {
-    return Error(imagePath + ": " + error);
-  }
-  if (!(report.rmsPixels <= maxRms))
-  {
-    if (!overlay.empty())
-    {
-      WriteOverlay(overlay, bgr, camera, points, centre, radius, error);
-    }
-    char text[256];
-    std::snprintf(text, sizeof text,
-      "the outline found does not fit a sphere's: its %d points lie %.3g px (RMS) from the best "
-      "sphere's outline, more than --max-rms %.3g px (a dome's cut, a wrong lens calibration, "
-      "or an edge that is not the mirror's rim%s)",
-      report.pointCount, report.rmsPixels, maxRms, overlay.empty() ? "" : ": see the overlay");
-    return Error(imagePath + ": " + text);
-  }
-  std::printf("centre: %.9g %.9g %.9g\n", centre.x(), centre.y(), centre.z());
-  std::printf("distance: %.9g\n", report.distance);
-  std::printf("outline points: %d\n", report.pointCount);
-  std::printf("rms: %.4g px\n", report.rmsPixels);
-
-  camera.mirror = catar::MirrorOfOutline(centre, radius);
-  if (!output.empty() && !catar::SaveCalibration(output, camera, error))
-  {
-    return Error(error);
-  }
-  if (!overlay.empty() && !WriteOverlay(overlay, bgr, camera, points, centre, radius, error))
-  {
-    return Error(error);
-  }
-  return 0;
+  return rim
+    ? PlaceFromRim(camera, bgr, points, keepAxis, maxRms, imagePath, output, overlay)
+    : SphereFromItsOutline(camera, bgr, points, radius, maxRms, imagePath, output, overlay);
 }
 } // namespace
 

@@ -115,10 +115,11 @@ struct RimOutlineReport
   /// poorly (a tilt and a shift across look alike): the axis sigma says how poorly.
   double centreSigma = 0.0;
   double axisSigma = 0.0;
-  /// When the other tilt a circle's image allows fits as well (within three sigmas of the
-  /// residuals; a circle seen through a pinhole has two poses that fit exactly), the angle between
-  /// the two axes (radians), else 0: the axis is then not known from the rim, only one of two (the
-  /// one nearer the guess is taken; the other is otherAxis).
+  /// When the other tilt a circle's image allows fits as well (costs within 45 times the
+  /// residuals' variance: three sigmas, the points counted as a fifth as many for the smoothing
+  /// along the rim; a circle seen through a pinhole has two poses that fit exactly), the angle
+  /// between the two axes (radians), else 0: the axis is then not known from the rim, only one of
+  /// two (the one nearer the guess is taken; the other is otherAxis).
   double ambiguousTilt = 0.0;
   Vec3 otherAxis = Vec3::Zero();
   int iterations = 0; ///< Levenberg-Marquardt iterations

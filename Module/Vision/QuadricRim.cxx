@@ -23,6 +23,10 @@ using detail::Describe;
 using detail::ValidateLens;
 
 constexpr double kPi = 3.14159265358979323846;
+// Two fits are alike when their costs differ by less than this many times the residuals'
+// variance: three sigmas (9) for points that count as a fifth as many (a detected outline is
+// smoothed along the rim over about five of its points).
+constexpr double kAlike = 45.0;
 
 // The rim: a circle of radius rho about the mirror frame's z axis at height z, placed in the
 // camera frame by its centre c and unit normal n (the mirror's axis).
@@ -264,9 +268,9 @@ bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlineP
 
   // The rim from the description's pose; with the axis fitted, also from the other tilt that a
   // circle's image allows (the normal mirrored about the line of sight to the rim's centre): the
-  // better fit is taken; when the two fit alike (their costs differ by less than 9 s^2, three
-  // sigmas: through a pinhole both fit exactly) the tilt is ambiguous and the one nearer the guess
-  // is taken.
+  // better fit is taken; when the two fit alike (their costs differ by less than kAlike s^2;
+  // through a pinhole both fit exactly) the tilt is ambiguous and the one nearer the guess is
+  // taken.
   const Mat3 R0 = g.mirrorToCamera.topLeftCorner<3, 3>();
   const Vec3 t0 = g.mirrorToCamera.topRightCorner<3, 1>();
   Rim first;
@@ -283,37 +287,109 @@ bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlineP
   }
   if (options.fitAxis)
   {
-    const Vec3 sight = fit.rim.centre.normalized();
-    Rim other = fit.rim;
-    other.normal = (2.0 * fit.rim.normal.dot(sight) * sight - fit.rim.normal).normalized();
-    other.normal = other.normal.dot(first.normal) < 0.0 ? Vec3(-other.normal) : other.normal;
-    RimFit second;
-    if (std::acos(std::clamp(other.normal.dot(fit.rim.normal), -1.0, 1.0)) > 1e-6 &&
-      FitRim(rays, other, rho, focal, unknowns, second))
+    // The rays' cone x^T Q x = 0 (x = (u, v, 1), normalised coordinates), whose eigenvalues are
+    // two of one sign and one of the other: a circle's two planes have normals +-a v1 + b v3 (v3
+    // the lone eigenvalue's eigenvector, v1 that of the larger of the other two), mirror images
+    // across the plane of v2 and v3.
+    std::vector<Vec2> normalised(n);
+    for (std::size_t i = 0; i < n; ++i)
     {
-      const double variance = fit.cost / static_cast<double>(static_cast<int>(n) - unknowns);
-      const Vec3 a = fit.rim.normal, b = second.rim.normal;
-      const double turn = std::atan2(a.cross(b).norm(), a.dot(b));
-      const bool alike =
-        std::abs(second.cost - fit.cost) <= 9.0 * variance + 1e-12 * (1.0 + static_cast<double>(n));
-      if (alike && turn > 3.0 * fit.axisSigma)
+      normalised[i] = Vec2(rays[i].x() / rays[i].z(), rays[i].y() / rays[i].z());
+    }
+    Mat3 Q;
+    Vec3 v1 = Vec3::Zero();
+    if (detail::FitConic(normalised.data(), n, Q))
+    {
+      Mat3 q = Q;
+      if (q.determinant() > 0.0)
       {
-        // Both fit: the one nearer the guess is taken, the other reported.
-        report.ambiguousTilt = turn;
-        const auto off = [&](const Vec3& v) {
-          return std::atan2(v.cross(first.normal).norm(), v.dot(first.normal));
-        };
-        if (off(b) < off(a))
-        {
-          std::swap(fit, second);
-        }
-        report.otherAxis = second.rim.normal;
+        q = -q; // two positive eigenvalues and one negative
       }
-      else if (second.cost < fit.cost)
+      const Eigen::SelfAdjointEigenSolver<Mat3> es(q);
+      v1 = es.eigenvectors().col(2); // the largest
+    }
+    // Fits from the other tilt of the first fit and of the guess.
+    std::vector<RimFit> fits = { fit };
+    const auto mirrored = [&](const Vec3& normal) {
+      const Vec3 m = (normal - 2.0 * normal.dot(v1) * v1).normalized();
+      return m.dot(first.normal) < 0.0 ? Vec3(-m) : m;
+    };
+    for (const Vec3& normal : { mirrored(fit.rim.normal), mirrored(first.normal) })
+    {
+      Rim start = fit.rim;
+      start.normal = normal;
+      RimFit other;
+      if (v1.norm() > 0.5 && FitRim(rays, start, rho, focal, unknowns, other))
       {
-        std::swap(fit, second);
+        fits.push_back(other);
       }
     }
+    const auto angle = [](const Vec3& p, const Vec3& q) {
+      return std::atan2(p.cross(q).norm(), p.dot(q));
+    };
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < fits.size(); ++k)
+    {
+      best = fits[k].cost < fits[best].cost ? k : best;
+    }
+    const double variance = fits[best].cost / static_cast<double>(static_cast<int>(n) - unknowns);
+    const double limit = kAlike * variance + 1e-12 * (1.0 + static_cast<double>(n));
+    // The fits alike to the best but with another axis: the tilt is ambiguous. The one nearer
+    // the guess is taken, the farthest from it reported.
+    std::size_t chosen = best;
+    std::size_t farthest = best;
+    for (std::size_t k = 0; k < fits.size(); ++k)
+    {
+      const bool alike = fits[k].cost - fits[best].cost <= limit;
+      if (!alike)
+      {
+        continue;
+      }
+      if (angle(fits[k].rim.normal, first.normal) < angle(fits[chosen].rim.normal, first.normal))
+      {
+        chosen = k;
+      }
+    }
+    for (std::size_t k = 0; k < fits.size(); ++k)
+    {
+      const bool alike = fits[k].cost - fits[best].cost <= limit;
+      if (alike &&
+        angle(fits[k].rim.normal, fits[chosen].rim.normal) >
+          angle(fits[farthest].rim.normal, fits[chosen].rim.normal))
+      {
+        farthest = k;
+      }
+    }
+    // Where noise merges the two minima into one flat valley, the cost's profile along the tilt
+    // (the axis turned towards its mirror image, the centre refitted at each) shows it: the
+    // farthest tilt, either side, that fits alike.
+    {
+      const Vec3 from = fits[chosen].rim.normal;
+      const Vec3 towards = mirrored(from);
+      const double span = std::max(angle(from, towards), 6.0 * fits[chosen].axisSigma);
+      const Vec3 side = (towards - from.dot(towards) * from).normalized();
+      for (int k = -12; k <= 12 && side.allFinite(); ++k)
+      {
+        const double tilt = 1.5 * span * k / 12.0;
+        Rim start = fits[chosen].rim;
+        start.normal = (std::cos(tilt) * from + std::sin(tilt) * side).normalized();
+        RimFit profile;
+        if (k != 0 && FitRim(rays, start, rho, focal, 3, profile) &&
+          profile.cost - fits[best].cost <= limit &&
+          angle(profile.rim.normal, from) > angle(fits[farthest].rim.normal, from))
+        {
+          fits.push_back(profile);
+          farthest = fits.size() - 1;
+        }
+      }
+    }
+    const double turn = angle(fits[farthest].rim.normal, fits[chosen].rim.normal);
+    if (turn > 3.0 * fits[chosen].axisSigma)
+    {
+      report.ambiguousTilt = turn;
+      report.otherAxis = fits[farthest].rim.normal;
+    }
+    fit = fits[chosen];
   }
   const Rim& rim = fit.rim;
   report.iterations = fit.iterations;
@@ -329,14 +405,15 @@ bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlineP
     error = "the rim's fit failed (no finite pose)";
     return false;
   }
-  const int shape = static_cast<int>(mirror.parameters.size()) - 18;
+  // mirror_to_camera, row-major, before the two numbers of z_range.
+  double* h = mirror.parameters.data() + (mirror.parameters.size() - 18);
   for (int row = 0; row < 3; ++row)
   {
     for (int col = 0; col < 3; ++col)
     {
-      mirror.parameters[static_cast<std::size_t>(shape + 4 * row + col)] = R(row, col);
+      *h++ = R(row, col);
     }
-    mirror.parameters[static_cast<std::size_t>(shape + 4 * row + 3)] = t(row);
+    *h++ = t(row);
   }
   report.pointCount = static_cast<int>(n);
   report.rimRadius = rho;

@@ -38,6 +38,12 @@ struct OutlineScene
   /// away and a grey post of radius 0.3 R stands below the cut. domeCut <= -1: a whole sphere.
   catar::Vec3 domeAxis{ 0.0, 0.0, -1.0 };
   double domeCut = -2.0;
+  /// Instead of the sphere: a hyperboloid's upper sheet (x^2 + y^2) / b^2 - z^2 / a^2 + 1 = 0
+  /// between zmin and zmax of its own frame, placed by mirrorToCamera (as the calibration's
+  /// hyperboloid type). `centre` then only places the backdrop (behind it by backdropBehind).
+  bool hyperboloid = false;
+  double a = 0.03, b = 0.04, zmin = 0.03, zmax = 0.07;
+  catar::Mat4 mirrorToCamera = catar::Mat4::Identity();
 };
 
 /// A vector in POV-Ray's coordinates (the camera frame, y negated).
@@ -64,9 +70,13 @@ inline bool RenderOutlineFrame(const std::string& dir, const std::string& name,
   std::ostringstream s;
   s.precision(17);
   s << "global_settings { assumed_gamma 1.0 max_trace_level 8 }\n";
-  // Rows turned down by half a pixel: see PovRayMarkerFrames.h.
-  s << "camera { perspective location <0, 0, 0> direction <0, " << -0.5 / k.fy << ", 1> right <"
-    << k.width / k.fx << ", 0, 0> up <0, " << k.height / k.fy << ", 0> }\n";
+  // POV-Ray puts pixel (i, j)'s centre at ((i + 0.5) / width, (j + 0.5) / height) of `right` and
+  // `up`, as OpenCV: measured with a small white sphere at (0.05, 0.03, 1) m through f = 500 px,
+  // its image's centroid at (688.515, 538.517) px against (688.5, 538.5) projected. (The marker
+  // frames' camera, PovRayMarkerFrames.h, is turned half a pixel, which this measurement does not
+  // bear out: their corners' half-pixel offset has another cause.)
+  s << "camera { perspective location <0, 0, 0> direction <0, 0, 1> right <" << k.width / k.fx
+    << ", 0, 0> up <0, " << k.height / k.fy << ", 0> }\n";
   s << "background { rgb 0.5 }\n";
   // The room: a wall of coloured blotches all round, 4 m away, and a floor 1 m below the camera.
   s << "sphere { <0, 0, 0>, 4 hollow pigment { bozo scale 0.35 color_map { [0.0 rgb <0.85, 0.8, "
@@ -87,7 +97,27 @@ inline bool RenderOutlineFrame(const std::string& dir, const std::string& name,
   std::ostringstream finish;
   finish << "pigment { rgb 0 } finish { ambient 0 diffuse 0 reflection " << scene.reflectance
          << " }";
-  if (scene.domeCut <= -1.0)
+  if (scene.hyperboloid)
+  {
+    // POV-Ray's matrix maps a row vector p to p M + m3: M is the transpose of (S R), S the y
+    // negation, and m3 is S t.
+    const catar::Mat3 SR =
+      catar::Vec3(1.0, -1.0, 1.0).asDiagonal() * scene.mirrorToCamera.topLeftCorner<3, 3>();
+    const catar::Vec3 t = scene.mirrorToCamera.topRightCorner<3, 1>();
+    s << "intersection { quadric { <" << 1.0 / (scene.b * scene.b) << ", "
+      << 1.0 / (scene.b * scene.b) << ", " << -1.0 / (scene.a * scene.a)
+      << ">, <0, 0, 0>, <0, 0, 0>, 1 } plane { z, " << scene.zmax << " } plane { -z, "
+      << -scene.zmin << " } matrix <";
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        s << SR(j, i) << ", ";
+      }
+    }
+    s << t.x() << ", " << -t.y() << ", " << t.z() << "> " << finish.str() << " }\n";
+  }
+  else if (scene.domeCut <= -1.0)
   {
     s << "object { " << mirror << " " << finish.str() << " }\n";
   }
