@@ -40,6 +40,18 @@ bool CentreOf(const OutlineScene& scene, const cv::Mat& bgr, catar::Vec3& centre
   return catar::DetectMirrorOutline(camera, bgr.cols, bgr.rows, rgba.data(), outline, error) &&
     catar::SphereFromOutline(camera, scene.radius, outline, centre, report, error);
 }
+// The scene rendered by POV-Ray into dir/NAME.png, read back (BGR); empty, with a failure, when
+// POV-Ray failed.
+cv::Mat Rendered(const std::string& dir, const std::string& name, const OutlineScene& scene)
+{
+  std::string png, error;
+  if (!RenderOutlineFrame(dir, name, scene, png, error))
+  {
+    ADD_FAILURE() << error;
+    return cv::Mat();
+  }
+  return cv::imread(png, cv::IMREAD_COLOR);
+}
 } // namespace
 
 TEST(MirrorOutlinePovRay, BrightAndDarkBackdrops)
@@ -67,10 +79,9 @@ TEST(MirrorOutlinePovRay, BrightAndDarkBackdrops)
   }
   for (const Case& c : cases)
   {
-    std::string png, error;
-    ASSERT_TRUE(RenderOutlineFrame(dir, c.name, c.scene, png, error)) << error;
-    const cv::Mat clean = cv::imread(png, cv::IMREAD_COLOR);
+    const cv::Mat clean = Rendered(dir, c.name, c.scene);
     ASSERT_FALSE(clean.empty());
+    std::string error;
     for (const bool noisy : { false, true })
     {
       SCOPED_TRACE(c.name + (noisy ? " noisy" : " clean"));
@@ -134,9 +145,9 @@ TEST(MirrorOutlinePovRay, DomeMirror)
   {
     scene.backdrop = backdrop;
     const std::string name = backdrop > 0.5 ? "dome-bright" : "dome-dark";
-    std::string png, error;
-    ASSERT_TRUE(RenderOutlineFrame(dir, name, scene, png, error)) << error;
-    const cv::Mat clean = cv::imread(png, cv::IMREAD_COLOR);
+    const cv::Mat clean = Rendered(dir, name, scene);
+    ASSERT_FALSE(clean.empty());
+    std::string error;
     for (int seed = 12; seed < 21; ++seed)
     {
       const bool noisy = seed > 12;
@@ -199,9 +210,9 @@ TEST(MirrorOutlinePovRay, HyperboloidRim)
   {
     scene.backdrop = backdrop;
     const std::string name = backdrop > 0.5 ? "rim-bright" : "rim-dark";
-    std::string png, error;
-    ASSERT_TRUE(RenderOutlineFrame(dir, name, scene, png, error)) << error;
-    const cv::Mat clean = cv::imread(png, cv::IMREAD_COLOR);
+    const cv::Mat clean = Rendered(dir, name, scene);
+    ASSERT_FALSE(clean.empty());
+    std::string error;
     for (const bool noisy : { false, true })
     {
       SCOPED_TRACE(name + (noisy ? " noisy" : " clean"));

@@ -35,6 +35,27 @@ inline bool HavePovRay()
   return std::system("povray --version > /dev/null 2>&1") == 0;
 }
 
+/// Writes the scene text to dir/NAME.pov and renders it into dir/NAME.png (`png`) at width x
+/// height: anti-aliased (POV-Ray's adaptive sampling, 3 levels) unless `antialias` is false. False
+/// with a sentence in `error` (POV-Ray's log: dir/NAME.log).
+inline bool RunPovRay(const std::string& dir, const std::string& name, const std::string& scene,
+  int width, int height, bool antialias, std::string& png, std::string& error)
+{
+  const std::string sceneFile = dir + "/" + name + ".pov";
+  png = dir + "/" + name + ".png";
+  std::ofstream(sceneFile) << scene;
+  std::ostringstream command;
+  command << "povray +I" << sceneFile << " +O" << png << " +W" << width << " +H" << height
+          << " +FN File_Gamma=1.0 -D -V -GA +Q9 " << (antialias ? "+A0.05 +AM2 +R3" : "-A") << " > "
+          << dir << "/" << name << ".log 2>&1";
+  if (std::system(command.str().c_str()) != 0)
+  {
+    error = "povray failed: see " + dir + "/" + name + ".log";
+    return false;
+  }
+  return true;
+}
+
 /// Renders the board seen through `camera` (a sphere mirror, no distortion, the principal point
 /// at the image centre) into dir/NAME.png: anti-aliased (POV-Ray's adaptive sampling, 3 levels)
 /// or, with idMask, the id mask. False with a sentence in `error`.
@@ -121,19 +142,7 @@ inline bool RenderMarkerFrame(const std::string& dir, const std::string& name,
          "<0, 2, 3> } uv_indices { 2, <0, 1, 2>, <0, 2, 3> } texture { "
       << texture << " finish { ambient 1 diffuse 0 } } }\n";
   }
-  const std::string sceneFile = dir + "/" + name + ".pov";
-  png = dir + "/" + name + ".png";
-  std::ofstream(sceneFile) << s.str();
-  std::ostringstream command;
-  command << "povray +I" << sceneFile << " +O" << png << " +W" << k.width << " +H" << k.height
-          << " +FN File_Gamma=1.0 -D -V -GA +Q9 " << (idMask ? "-A" : "+A0.05 +AM2 +R3") << " > "
-          << dir << "/" << name << ".log 2>&1";
-  if (std::system(command.str().c_str()) != 0)
-  {
-    error = "povray failed: see " + dir + "/" + name + ".log";
-    return false;
-  }
-  return true;
+  return RunPovRay(dir, name, s.str(), k.width, k.height, !idMask, png, error);
 }
 } // namespace catar_independent
 

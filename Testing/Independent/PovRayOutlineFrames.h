@@ -133,19 +133,7 @@ inline bool RenderOutlineFrame(const std::string& dir, const std::string& name,
     s << "cylinder { " << PovVector(base) << ", " << PovVector(base - 0.6 * a) << ", "
       << 0.3 * scene.radius << " pigment { rgb 0.3 } finish { ambient 1 diffuse 0 } }\n";
   }
-  const std::string sceneFile = dir + "/" + name + ".pov";
-  png = dir + "/" + name + ".png";
-  std::ofstream(sceneFile) << s.str();
-  std::ostringstream command;
-  command << "povray +I" << sceneFile << " +O" << png << " +W" << k.width << " +H" << k.height
-          << " +FN File_Gamma=1.0 -D -V -GA +Q9 +A0.05 +AM2 +R3 > " << dir << "/" << name
-          << ".log 2>&1";
-  if (std::system(command.str().c_str()) != 0)
-  {
-    error = "povray failed: see " + dir + "/" + name + ".log";
-    return false;
-  }
-  return true;
+  return RunPovRay(dir, name, s.str(), k.width, k.height, true, png, error);
 }
 } // namespace catar_independent
 
