@@ -150,20 +150,7 @@ int PlaceFromRim(catar::CameraModel camera, const cv::Mat& bgr,
   {
     return Error(imagePath + ": " + error);
   }
-  std::vector<catar::Vec2> fitted;
-  {
-    const catar::Vec3 e1 = report.axis.unitOrthogonal(), e2 = report.axis.cross(e1);
-    for (int k = 0; k < 720; ++k)
-    {
-      const double angle = 2.0 * 3.14159265358979323846 * k / 720.0;
-      const catar::Vec3 p =
-        report.rimCentre + report.rimRadius * (std::cos(angle) * e1 + std::sin(angle) * e2);
-      if (p.z() > 0.0)
-      {
-        fitted.push_back(camera.DirectionToPixel(p));
-      }
-    }
-  }
+  const std::vector<catar::Vec2> fitted = catar::RimOutline(camera, report, 720);
   const auto refuse = [&](const std::string& why) {
     if (!overlay.empty())
     {

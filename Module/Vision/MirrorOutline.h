@@ -154,6 +154,10 @@ bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlineP
   const RimFitOptions& options, MirrorDescription& mirror, RimOutlineReport& report,
   std::string& error);
 
+/// The image of the rim QuadricFromRim found (report's rimCentre, axis, rimRadius) through
+/// `camera`: `count` pixels evenly spaced round it, those in front of the camera (z > 0).
+std::vector<Vec2> RimOutline(const CameraModel& camera, const RimOutlineReport& rim, int count);
+
 /// The closed-form sphere mirror of that centre (camera frame) and radius, as a calibration holds
 /// it (the mirror SphereFromOutline found).
 MirrorDescription MirrorOfOutline(const Vec3& centre, double radius);

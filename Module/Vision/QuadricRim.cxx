@@ -423,18 +423,7 @@ bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlineP
   report.axisTurn = std::acos(std::clamp(first.normal.dot(rim.normal), -1.0, 1.0));
   report.shift = (rim.centre - first.centre).norm();
   // The RMS distance of the points from the rim's image (2880 points round it).
-  Vec3 e1, e2;
-  Across(rim.normal, e1, e2);
-  std::vector<Vec2> line;
-  for (int k = 0; k < 2880; ++k)
-  {
-    const double angle = 2.0 * kPi * k / 2880.0;
-    const Vec3 p = rim.centre + rho * (std::cos(angle) * e1 + std::sin(angle) * e2);
-    if (p.z() > 0.0)
-    {
-      line.push_back(camera.DirectionToPixel(p));
-    }
-  }
+  const std::vector<Vec2> line = RimOutline(camera, report, 2880);
   double sum = 0.0;
   for (const Vec2& p : outlinePixels)
   {
@@ -448,5 +437,22 @@ bool QuadricFromRim(const CameraModel& camera, const std::vector<Vec2>& outlineP
     return false;
   }
   return true;
+}
+
+std::vector<Vec2> RimOutline(const CameraModel& camera, const RimOutlineReport& rim, int count)
+{
+  std::vector<Vec2> line;
+  Vec3 e1, e2;
+  Across(rim.axis, e1, e2);
+  for (int k = 0; k < count; ++k)
+  {
+    const double angle = 2.0 * kPi * k / count;
+    const Vec3 p = rim.rimCentre + rim.rimRadius * (std::cos(angle) * e1 + std::sin(angle) * e2);
+    if (p.z() > 0.0)
+    {
+      line.push_back(camera.DirectionToPixel(p));
+    }
+  }
+  return line;
 }
 } // namespace catar
