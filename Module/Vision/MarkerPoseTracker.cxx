@@ -94,7 +94,10 @@ const FramePose& MarkerPoseTracker::Track(
       posed.worldToCamera = f.result.ok ? f.result.worldToCamera : this->Anchor.worldToCamera;
       f.markersRecovered =
         RecoverMarkers(width, height, rgba, posed, this->BoardLayout, candidates, found);
-      if (f.markersRecovered > 0)
+      // The corners on the markers' edges, the sides bent as the pose projects them; the pose
+      // again from them.
+      if (RefineMarkerCorners(width, height, rgba, posed, this->BoardLayout, found) > 0 ||
+        f.markersRecovered > 0)
       {
         f.result = PoseFromMarkers(camera, this->BoardLayout, found, this->BoardLayout.pose);
       }

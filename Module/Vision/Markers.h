@@ -98,6 +98,19 @@ int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const Camera
   const MarkerBoard& board, const std::vector<std::array<Vec2, 4>>& candidates,
   std::vector<MarkerDetection>& detections);
 
+/// The detected markers' corners moved onto the edges of their black squares: along each side
+/// the grey level's half-way crossing from the black square to the white margin, sampled across
+/// the side every pixel, a line fitted to them on top of the side's curvature, which `camera`
+/// (posed near the truth: this frame's first pose or the last one) gives by projecting the
+/// board's marker through the mirror; the corners where adjacent sides meet. OpenCV's corners
+/// come from straight lines through a thresholded contour's pixels: they lie about half a pixel
+/// inside the edges, and a mirror bends the sides. A marker whose corners the pose projects more
+/// than a tenth of its shorter side (2 px at least) from where they were found is left as it is;
+/// so is a corner when a side shows too few crossings or the corner would move more than 2 px.
+/// Returns the number of corners moved.
+int RefineMarkerCorners(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
+  const MarkerBoard& board, std::vector<MarkerDetection>& detections);
+
 /// The pose from the detected markers of the board (their four corners each): EstimatePose on
 /// the corners of the markers the board has. result.error says why when it fails (no marker of
 /// the board detected, or EstimatePose's reasons).

@@ -7,7 +7,7 @@
 // error against the true one (camera centre, mm; rotation, degrees), its inliers, and the detection
 // time. Prints a table; asserts nothing (speed and accuracy targets are the issue tracker's; the
 // tests hold what is reached).
-//   BenchmarkMarkersPovRay [--frames N] [--keep DIR] [--quick] [--no-recovery]
+//   BenchmarkMarkersPovRay [--frames N] [--keep DIR] [--quick] [--no-recovery] [--no-refinement]
 #include "CameraModel.h"
 #include "MarkerFrameScenes.h"
 #include "Markers.h"
@@ -37,11 +37,13 @@ using namespace catar_independent;
 
 // The corners found against the board's corners projected through the camera (the project's
 // forward projection, which independent tracers and an outside toolbox match to 1e-10 px): the
-// mean offset along the direction out of the marker (negative: inside) and the RMS distance.
+// mean offset along the direction out of the marker (negative: inside), the mean offset in the
+// image (a shift of the whole frame shows there) and the RMS distance.
 void CornerOffsets(const catar::CameraModel& camera, const catar::MarkerBoard& board,
-  const std::vector<catar::MarkerDetection>& found, double& outward, double& rms)
+  const std::vector<catar::MarkerDetection>& found, double& outward, catar::Vec2& mean, double& rms)
 {
   const catar::Projector projector(camera);
+  catar::Vec2 sum = catar::Vec2::Zero();
   double sumOut = 0.0;
   double sumSquares = 0.0;
   int n = 0;
@@ -65,12 +67,14 @@ void CornerOffsets(const catar::CameraModel& camera, const catar::MarkerBoard& b
       {
         const catar::Vec2 offset = d.corners[c] - truth[c];
         sumOut += offset.dot((truth[c] - centre).normalized());
+        sum += offset;
         sumSquares += offset.squaredNorm();
         ++n;
       }
     }
   }
   outward = n > 0 ? sumOut / n : NAN;
+  mean = n > 0 ? catar::Vec2(sum / n) : catar::Vec2(NAN, NAN);
   rms = n > 0 ? std::sqrt(sumSquares / n) : NAN;
 }
 
@@ -157,6 +161,7 @@ int main(int argc, char** argv)
   int frames = 6;
   std::string keep;
   bool recovery = true;
+  bool refinement = true;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -176,10 +181,15 @@ int main(int argc, char** argv)
     {
       recovery = false;
     }
+    else if (a == "--no-refinement")
+    {
+      refinement = false;
+    }
     else
     {
       std::fprintf(stderr,
-        "usage: BenchmarkMarkersPovRay [--frames N] [--keep DIR] [--quick] [--no-recovery]\n");
+        "usage: BenchmarkMarkersPovRay [--frames N] [--keep DIR] [--quick] [--no-recovery] "
+        "[--no-refinement]\n");
       return 2;
     }
   }
@@ -193,9 +203,9 @@ int main(int argc, char** argv)
   const catar::CameraModel camera = DemoMarkerCamera();
   std::printf("Eight 20 cm markers on the floor through the demo mirror, rendered by POV-Ray "
               "(anti-aliased); 'noisy': blur sigma 1 px, noise sigma 6.\n");
-  std::printf("%5s %6s %8s %9s %11s %9s %9s %13s %8s %9s %11s  %s\n", "frame", "kind", "visible",
-    "found", "corners px", "pose mm", "pose deg", "sigma mm/deg", "inliers", "detect ms",
-    "solve ms", "missed (shorter side, px)");
+  std::printf("%5s %6s %8s %9s %11s %11s %9s %9s %13s %8s %9s %11s  %s\n", "frame", "kind",
+    "visible", "found", "corners px", "mean dx,dy", "pose mm", "pose deg", "sigma mm/deg",
+    "inliers", "detect ms", "solve ms", "missed (shorter side, px)");
   std::map<std::string, GuardStats> guards;
   int status = 0;
   for (int f = 0; f < frames; ++f)
@@ -234,12 +244,20 @@ int main(int argc, char** argv)
       // MarkerPoseTracker does); --no-recovery leaves them out.
       int recovered = 0;
       const catar::PoseResult first = catar::PoseFromMarkers(camera, board, found);
-      if (first.ok && recovery)
+      if (first.ok)
       {
         catar::CameraModel posed = camera;
         posed.worldToCamera = first.worldToCamera;
-        recovered = catar::RecoverMarkers(camera.intrinsics.width, camera.intrinsics.height,
-          rgba.data(), posed, board, candidates, found);
+        if (recovery)
+        {
+          recovered = catar::RecoverMarkers(camera.intrinsics.width, camera.intrinsics.height,
+            rgba.data(), posed, board, candidates, found);
+        }
+        if (refinement)
+        {
+          catar::RefineMarkerCorners(
+            camera.intrinsics.width, camera.intrinsics.height, rgba.data(), posed, board, found);
+        }
       }
       int visible = 0;
       int foundVisible = 0;
@@ -283,14 +301,17 @@ int main(int argc, char** argv)
       }
       double outward = NAN;
       double rms = NAN;
-      CornerOffsets(camera, board, found, outward, rms);
-      std::printf("%5d %6s %8d %3d/%-3d%s %5.2f/%-5.2f %9.2f %9.3f %6.2f/%-5.3f%s %4d/%-3d %9.1f "
+      catar::Vec2 mean;
+      CornerOffsets(camera, board, found, outward, mean, rms);
+      std::printf("%5d %6s %8d %3d/%-3d%s %5.2f/%-5.2f %5.2f,%-5.2f %9.2f %9.3f %6.2f/%-5.3f%s "
+                  "%4d/%-3d %9.1f "
                   "%5.2f/%-5.2f %s\n",
         f, kind.first, visible, foundVisible, static_cast<int>(found.size()),
-        recovered > 0 ? ("+" + std::to_string(recovered)).c_str() : "  ", outward, rms, mm, degrees,
-        1000.0 * pose.uncertainty.positionSigma, pose.uncertainty.angleSigmaDegrees,
-        pose.reliable ? " " : "!", pose.inlierCount, static_cast<int>(4 * found.size()), ms,
-        firstSolveMs, solveMs, missed.empty() ? " -" : missed.c_str());
+        recovered > 0 ? ("+" + std::to_string(recovered)).c_str() : "  ", outward, rms, mean.x(),
+        mean.y(), mm, degrees, 1000.0 * pose.uncertainty.positionSigma,
+        pose.uncertainty.angleSigmaDegrees, pose.reliable ? " " : "!", pose.inlierCount,
+        static_cast<int>(4 * found.size()), ms, firstSolveMs, solveMs,
+        missed.empty() ? " -" : missed.c_str());
       guards[std::string("all markers, ") + kind.first].Add(pose, camera.worldToCamera);
       TryGuards(camera, board, found, guards);
       if (kind.second == &noisy && !keep.empty())

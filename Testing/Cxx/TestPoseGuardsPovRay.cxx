@@ -2,25 +2,29 @@
 // POV-Ray's anti-aliased images of marker boards seen in the demo camera's mirror sphere
 // (Testing/Independent), clean and with a real lens's blur (1 px) and noise (sigma 6). The truth
 // is the pose POV-Ray was given. What must hold:
-// - the whole board: found reliable, within 5 mm and 0.2 degrees clean, 10 mm noisy, and within
-//   three of its reported sigmas;
+// - the whole board: found reliable, within 2 mm and 0.1 degrees clean, 4 mm and 0.2 degrees
+//   noisy (the issue asks 5 mm and 0.2 degrees, 10 mm), and within three of its reported sigmas;
 // - no pose reported reliable that is more than 2 cm or 1 degree off, whatever part of the
 //   markers it comes from (each marker alone, every pair, two markers side by side) or whatever
 //   wrong board it is given (marker sizes 0.8 to 1.25 times the true ones);
 // - one marker alone is flagged, with a warning that says so; so are two markers side by side
-//   and a board 20 % or 25 % off in size;
+//   and a board 10 % to 25 % off in size;
+// - the corners lie on the markers' edges: no bias inwards or outwards, and within 0.2 px (clean)
+//   or 0.4 px (noisy) of the exact projection of the board's corners, RMS;
 // - every marker of 20 px or more on its shorter side (POV-Ray's id mask says which) is found.
 // Skipped where povray is not installed.
 #include "MarkerFrameScenes.h"
 #include "MarkerPoseTracker.h"
 #include "Markers.h"
 #include "PovRayMarkerFrames.h"
+#include "Projector.h"
 
 #include <gtest/gtest.h>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -77,11 +81,13 @@ protected:
       const cv::Mat noisy = LensBlurAndNoise(clean, 1.0, 6.0, 7);
       for (const auto& kind : { std::make_pair("clean", clean), std::make_pair("noisy", noisy) })
       {
+        // The markers as the tracker finds them (OpenCV's detection, those undecoded read again
+        // where the pose puts them, the corners placed on the edges): what a user's poses
+        // come from.
         Frame f{ scene.first + " " + kind.first, scene.second, {}, kind.second, sizes };
         const std::vector<std::uint8_t> rgba = RgbaPixels(kind.second);
-        ASSERT_TRUE(catar::DetectMarkers(camera.intrinsics.width, camera.intrinsics.height,
-          rgba.data(), scene.second.dictionary, true, f.found, error))
-          << error;
+        catar::MarkerPoseTracker tracker(scene.second);
+        f.found = tracker.Track(camera, clean.cols, clean.rows, rgba.data(), 0.0).detections;
         frames->push_back(f);
       }
     }
@@ -139,8 +145,8 @@ TEST_F(PoseGuards, TheWholeBoardIsReliableAndWithinItsSigmas)
     std::cout << f.name << ": " << f.found.size() << " markers, " << mm << " mm, " << degrees
               << " deg off; one sigma " << 1000.0 * pose.uncertainty.positionSigma << " mm, "
               << pose.uncertainty.angleSigmaDegrees << " deg\n";
-    EXPECT_LE(mm, noisy ? 10.0 : 5.0) << f.name;
-    EXPECT_LE(degrees, noisy ? 0.4 : 0.2) << f.name;
+    EXPECT_LE(mm, noisy ? 4.0 : 2.0) << f.name;
+    EXPECT_LE(degrees, noisy ? 0.2 : 0.1) << f.name;
     EXPECT_LE(mm, 3.0 * 1000.0 * pose.uncertainty.positionSigma) << f.name;
     EXPECT_LE(degrees, 3.0 * pose.uncertainty.angleSigmaDegrees) << f.name;
   }
@@ -185,8 +191,57 @@ TEST_F(PoseGuards, EveryMarkerOf20PixelsIsFound)
               << " read again where the pose puts them), " << mm << " mm, " << degrees
               << " deg off\n";
     const bool noisy = f.name.find("noisy") != std::string::npos;
-    EXPECT_LE(mm, noisy ? 10.0 : 5.0) << f.name;
-    EXPECT_LE(degrees, noisy ? 0.4 : 0.2) << f.name;
+    EXPECT_LE(mm, noisy ? 4.0 : 2.0) << f.name;
+    EXPECT_LE(degrees, noisy ? 0.2 : 0.1) << f.name;
+  }
+}
+
+// The corners the tracker gives against the exact projection of the board's corners (the
+// project's forward projection, which independent tracers and an outside toolbox match to
+// 1e-10 px): their mean offset out of the marker (OpenCV's contour corners lie 0.6 px inside on
+// these frames) and their RMS distance (0.7-0.8 px from OpenCV alone, clean).
+TEST_F(PoseGuards, CornersLieOnTheEdges)
+{
+  const catar::CameraModel camera = DemoMarkerCamera();
+  const catar::Projector projector(camera);
+  for (const Frame& f : *frames)
+  {
+    // Not the pair: its markers' white margins overlap (2 cm apart), and OpenCV puts two corners
+    // of one of them on the neighbour's side, 3-3.6 px off, too far to be moved (2 px at most).
+    if (f.board.markers.size() != 8)
+    {
+      continue;
+    }
+    double outward = 0.0;
+    double squares = 0.0;
+    int n = 0;
+    for (const catar::MarkerDetection& d : f.found)
+    {
+      const auto marker = std::find_if(f.board.markers.begin(), f.board.markers.end(),
+        [&](const catar::BoardMarker& m) { return m.id == d.id; });
+      ASSERT_NE(marker, f.board.markers.end()) << f.name << ": marker " << d.id;
+      const auto corners = marker->Corners();
+      catar::Vec2 truth[4];
+      catar::Vec2 centre = catar::Vec2::Zero();
+      for (int c = 0; c < 4; ++c)
+      {
+        truth[c] = projector.ProjectWorld(corners[static_cast<std::size_t>(c)]).pixel;
+        centre += 0.25 * truth[c];
+      }
+      for (int c = 0; c < 4; ++c)
+      {
+        const catar::Vec2 offset = d.corners[static_cast<std::size_t>(c)] - truth[c];
+        outward += offset.dot((truth[c] - centre).normalized());
+        squares += offset.squaredNorm();
+        ++n;
+      }
+    }
+    ASSERT_GE(n, 8) << f.name;
+    const bool noisy = f.name.find("noisy") != std::string::npos;
+    std::cout << f.name << ": " << n << " corners, " << outward / n << " px outwards on average, "
+              << std::sqrt(squares / n) << " px RMS\n";
+    EXPECT_LE(std::abs(outward / n), noisy ? 0.2 : 0.1) << f.name;
+    EXPECT_LE(std::sqrt(squares / n), noisy ? 0.4 : 0.2) << f.name;
   }
 }
 
@@ -256,11 +311,9 @@ TEST_F(PoseGuards, AWrongBoardIsNotReliable)
       const catar::PoseResult pose =
         catar::PoseFromMarkers(camera, ResizedBoard(f.board, factor), f.found);
       const std::string what = f.name + ", marker sizes x" + std::to_string(factor);
-      const bool reliable = ReliableMeansRight(pose, what);
-      if (factor == 0.8 || factor == 1.25)
-      {
-        EXPECT_FALSE(reliable) << what;
-      }
+      // Off by 10 % the markers' corners no longer fit within their noise (rms 1.2-1.4 px),
+      // which the uncertainty shows (one sigma 10-13 mm, over the bound of 8).
+      EXPECT_FALSE(ReliableMeansRight(pose, what)) << what;
     }
   }
 }
