@@ -203,9 +203,9 @@ int main(int argc, char** argv)
   const catar::CameraModel camera = DemoMarkerCamera();
   std::printf("Eight 20 cm markers on the floor through the demo mirror, rendered by POV-Ray "
               "(anti-aliased); 'noisy': blur sigma 1 px, noise sigma 6.\n");
-  std::printf("%5s %6s %8s %9s %11s %11s %9s %9s %13s %8s %9s %11s  %s\n", "frame", "kind",
+  std::printf("%5s %6s %8s %9s %11s %11s %9s %9s %13s %8s %9s %9s %11s  %s\n", "frame", "kind",
     "visible", "found", "corners px", "mean dx,dy", "pose mm", "pose deg", "sigma mm/deg",
-    "inliers", "detect ms", "solve ms", "missed (shorter side, px)");
+    "inliers", "detect ms", "refine ms", "solve ms", "missed (shorter side, px)");
   std::map<std::string, GuardStats> guards;
   int status = 0;
   for (int f = 0; f < frames; ++f)
@@ -243,6 +243,7 @@ int main(int argc, char** argv)
       // The markers found as shapes but not decoded, read again where the pose puts them (as
       // MarkerPoseTracker does); --no-recovery leaves them out.
       int recovered = 0;
+      double refineMs = 0.0;
       const catar::PoseResult first = catar::PoseFromMarkers(camera, board, found);
       if (first.ok)
       {
@@ -255,8 +256,12 @@ int main(int argc, char** argv)
         }
         if (refinement)
         {
+          const auto refineStart = std::chrono::steady_clock::now();
           catar::RefineMarkerCorners(
             camera.intrinsics.width, camera.intrinsics.height, rgba.data(), posed, board, found);
+          refineMs = std::chrono::duration<double, std::milli>(
+            std::chrono::steady_clock::now() - refineStart)
+                       .count();
         }
       }
       int visible = 0;
@@ -304,13 +309,13 @@ int main(int argc, char** argv)
       catar::Vec2 mean;
       CornerOffsets(camera, board, found, outward, mean, rms);
       std::printf("%5d %6s %8d %3d/%-3d%s %5.2f/%-5.2f %5.2f,%-5.2f %9.2f %9.3f %6.2f/%-5.3f%s "
-                  "%4d/%-3d %9.1f "
+                  "%4d/%-3d %9.1f %9.2f "
                   "%5.2f/%-5.2f %s\n",
         f, kind.first, visible, foundVisible, static_cast<int>(found.size()),
         recovered > 0 ? ("+" + std::to_string(recovered)).c_str() : "  ", outward, rms, mean.x(),
         mean.y(), mm, degrees, 1000.0 * pose.uncertainty.positionSigma,
         pose.uncertainty.angleSigmaDegrees, pose.reliable ? " " : "!", pose.inlierCount,
-        static_cast<int>(4 * found.size()), ms, firstSolveMs, solveMs,
+        static_cast<int>(4 * found.size()), ms, refineMs, firstSolveMs, solveMs,
         missed.empty() ? " -" : missed.c_str());
       guards[std::string("all markers, ") + kind.first].Add(pose, camera.worldToCamera);
       TryGuards(camera, board, found, guards);
