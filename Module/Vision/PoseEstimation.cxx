@@ -337,84 +337,104 @@ Mat3 RotationFromAngleAxis(const Vec3& w)
 }
 
 // One observation's pixel residual for the pose R = exp(w) R0, t (world to camera), x = (w, t).
-// Derivatives by central differences through the forward projection; one-sided where a step
-// loses the point's image (near the mirror's rim), so that an inlier there never stops Ceres.
+// Derivatives by the chain rule: the pixel's derivative with respect to the point in the camera
+// frame by central differences through the forward projection (three directions: half the
+// projections of differencing the six pose parameters), one-sided where a step loses the point's
+// image (near the mirror's rim), so that an inlier there never stops Ceres; the point's derivative
+// with respect to the pose in closed form.
 class PixelCost : public ceres::SizedCostFunction<2, 3, 3>
 {
 public:
   PixelCost(const Projector& projector, const Mat3& R0, const PoseObservation& o)
     : ProjectorRef(projector)
-    , R0(R0)
-    , Observation(o)
+    , R0World(R0 * o.world)
+    , Pixel(o.pixel)
   {
   }
 
   bool Evaluate(
     double const* const* parameters, double* residuals, double** jacobians) const override
   {
-    Vector6 x;
-    x << parameters[0][0], parameters[0][1], parameters[0][2], parameters[1][0], parameters[1][1],
-      parameters[1][2];
-    Vec2 r;
-    Vec3 mirrorPoint;
-    if (!this->Residual(x, r, nullptr, &mirrorPoint))
+    const Vec3 w(parameters[0][0], parameters[0][1], parameters[0][2]);
+    const Vec3 t(parameters[1][0], parameters[1][1], parameters[1][2]);
+    const Mat3 R = RotationFromAngleAxis(w);
+    const Vec3 p = R * this->R0World + t;
+    const ProjectedPoint q = this->ProjectorRef.ProjectCamera(p);
+    if (!HasProjection(q.status))
     {
       return false; // Ceres rejects the step
     }
+    const Vec2 r = q.pixel - this->Pixel;
     residuals[0] = r.x();
     residuals[1] = r.y();
-    for (int k = 0; jacobians && k < 6; ++k)
+    if (!jacobians || (!jacobians[0] && !jacobians[1]))
     {
-      if (jacobians[k / 3])
-      {
-        const Vec2 column = this->Derivative(x, r, mirrorPoint, k);
-        jacobians[k / 3][k % 3] = column.x(); // row-major 2x3 blocks
-        jacobians[k / 3][3 + k % 3] = column.y();
-      }
+      return true;
+    }
+    Eigen::Matrix<double, 2, 3> dPixel; // d pixel / d p
+    for (int k = 0; k < 3; ++k)
+    {
+      dPixel.col(k) = this->Derivative(p, q.pixel, q.mirrorPoint, k);
+    }
+    if (jacobians[1]) // d p / d t = I
+    {
+      Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> dt(jacobians[1]);
+      dt = dPixel;
+    }
+    if (jacobians[0]) // d p / d w = -[R R0 X]x J_l(w), J_l the left Jacobian of SO(3)
+    {
+      Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> dw(jacobians[0]);
+      dw = dPixel * (-Skew(R * this->R0World) * LeftJacobian(w));
     }
     return true;
   }
 
 private:
-  using Vector6 = Eigen::Matrix<double, 6, 1>;
-
-  // The residual at x; with `near`, the projection's Newton starts from that reflection point
-  // (the projector's camera sits at the world's origin: its world is the camera frame).
-  bool Residual(const Vector6& x, Vec2& r, const Vec3* near, Vec3* mirrorPoint = nullptr) const
+  static Mat3 Skew(const Vec3& v)
   {
-    const Vec3 p =
-      RotationFromAngleAxis(x.head<3>()) * this->R0 * this->Observation.world + x.tail<3>();
-    const ProjectedPoint q =
-      near ? this->ProjectorRef.ProjectWorldNear(p, *near) : this->ProjectorRef.ProjectCamera(p);
-    r = q.pixel - this->Observation.pixel;
-    if (mirrorPoint)
-    {
-      *mirrorPoint = q.mirrorPoint;
-    }
-    return HasProjection(q.status);
+    Mat3 m;
+    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+    return m;
   }
 
-  // Central differences, each step's projection started from the reflection point at x (a step
-  // of 1e-6 moves it by far less than the Newton's tolerance needs: two or three steps).
-  Vec2 Derivative(const Vector6& x, const Vec2& r, const Vec3& mirrorPoint, int k) const
+  // The left Jacobian of SO(3)'s exponential: d exp(w) = [J_l(w) dw]x exp(w).
+  static Mat3 LeftJacobian(const Vec3& w)
   {
-    const double h = 1e-6 * std::max(1.0, std::abs(x[k]));
-    Vector6 xp = x, xm = x;
-    xp[k] += h;
-    xm[k] -= h;
-    Vec2 rp, rm;
-    const bool plus = this->Residual(xp, rp, &mirrorPoint),
-               minus = this->Residual(xm, rm, &mirrorPoint);
-    if (plus && minus)
+    const double theta = w.norm();
+    const Mat3 W = Skew(w);
+    if (theta < 1e-8)
     {
-      return (rp - rm) / (2.0 * h);
+      return Mat3::Identity() + 0.5 * W;
     }
-    return plus ? Vec2((rp - r) / h) : minus ? Vec2((r - rm) / h) : Vec2::Zero();
+    const double t2 = theta * theta;
+    return Mat3::Identity() + (1.0 - std::cos(theta)) / t2 * W +
+      (theta - std::sin(theta)) / (t2 * theta) * W * W;
+  }
+
+  // The pixel's derivative along the camera frame's axis k at p, each step's projection started
+  // from the reflection point at p (a step of 1e-7 of the distance moves it by far less than the
+  // Newton's tolerance needs: two or three steps).
+  Vec2 Derivative(const Vec3& p, const Vec2& pixel, const Vec3& mirrorPoint, int k) const
+  {
+    const double h = 1e-7 * std::max(1.0, p.norm());
+    Vec3 step = Vec3::Zero();
+    step[k] = h;
+    const ProjectedPoint plus = this->ProjectorRef.ProjectWorldNear(p + step, mirrorPoint);
+    const ProjectedPoint minus = this->ProjectorRef.ProjectWorldNear(p - step, mirrorPoint);
+    const bool hasPlus = HasProjection(plus.status);
+    const bool hasMinus = HasProjection(minus.status);
+    if (hasPlus && hasMinus)
+    {
+      return (plus.pixel - minus.pixel) / (2.0 * h);
+    }
+    return hasPlus ? Vec2((plus.pixel - pixel) / h)
+      : hasMinus   ? Vec2((pixel - minus.pixel) / h)
+                   : Vec2::Zero();
   }
 
   const Projector& ProjectorRef;
-  const Mat3 R0;
-  const PoseObservation Observation;
+  const Vec3 R0World; // R0 X: the world point turned by the start's rotation
+  const Vec2 Pixel;
 };
 
 // Ceres: least squares of the inliers' pixel errors through the mirror, over a rotation update

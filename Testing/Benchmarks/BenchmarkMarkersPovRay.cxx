@@ -8,6 +8,7 @@
 // time. Prints a table; asserts nothing (speed and accuracy targets are the issue tracker's; the
 // tests hold what is reached).
 //   BenchmarkMarkersPovRay [--frames N] [--keep DIR] [--quick] [--no-recovery] [--no-refinement]
+//   [--ten]
 #include "CameraModel.h"
 #include "MarkerFrameScenes.h"
 #include "Markers.h"
@@ -162,6 +163,7 @@ int main(int argc, char** argv)
   std::string keep;
   bool recovery = true;
   bool refinement = true;
+  int markers = 8;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -185,6 +187,10 @@ int main(int argc, char** argv)
     {
       refinement = false;
     }
+    else if (a == "--ten")
+    {
+      markers = 10;
+    }
     else
     {
       std::fprintf(stderr,
@@ -201,8 +207,9 @@ int main(int argc, char** argv)
   char folder[] = "/tmp/catar-povray-XXXXXX";
   const std::string dir = keep.empty() ? std::string(mkdtemp(folder)) : keep;
   const catar::CameraModel camera = DemoMarkerCamera();
-  std::printf("Eight 20 cm markers on the floor through the demo mirror, rendered by POV-Ray "
-              "(anti-aliased); 'noisy': blur sigma 1 px, noise sigma 6.\n");
+  std::printf("%s 20 cm markers on the floor through the demo mirror, rendered by POV-Ray "
+              "(anti-aliased); 'noisy': blur sigma 1 px, noise sigma 6.\n",
+    markers == 10 ? "Ten" : "Eight");
   std::printf("%5s %6s %8s %9s %11s %11s %9s %9s %13s %8s %9s %9s %11s  %s\n", "frame", "kind",
     "visible", "found", "corners px", "mean dx,dy", "pose mm", "pose deg", "sigma mm/deg",
     "inliers", "detect ms", "refine ms", "solve ms", "missed (shorter side, px)");
@@ -210,7 +217,7 @@ int main(int argc, char** argv)
   int status = 0;
   for (int f = 0; f < frames; ++f)
   {
-    const catar::MarkerBoard board = EightMarkerBoard(13.0 * f, 0.03 * f, -0.02 * f);
+    const catar::MarkerBoard board = EightMarkerBoard(13.0 * f, 0.03 * f, -0.02 * f, markers);
     std::string image;
     std::string mask;
     std::string error;

@@ -32,13 +32,15 @@ inline catar::CameraModel DemoMarkerCamera()
 /// Eight 20 cm markers (DICT_4X4_50, ids 0-7) on the floor behind the camera, 45 cm apart (as
 /// TestMarkers' board), the whole board turned by `turn` degrees about the vertical through
 /// (0, -0.5) and moved by (dx, dy); each marker also turned 10 degrees more than the last.
-inline catar::MarkerBoard EightMarkerBoard(double turn, double dx, double dy)
+/// `count` 10 adds two more (ids 8, 9) 90 cm either side of the middle one.
+inline catar::MarkerBoard EightMarkerBoard(double turn, double dx, double dy, int count = 8)
 {
   catar::MarkerBoard board;
-  const double xy[8][2] = { { -0.45, -0.5 }, { 0.0, -0.5 }, { 0.45, -0.5 }, { -0.45, -0.95 },
-    { 0.0, -0.95 }, { 0.45, -0.95 }, { -0.45, -0.05 }, { 0.45, -0.05 } };
+  const double xy[10][2] = { { -0.45, -0.5 }, { 0.0, -0.5 }, { 0.45, -0.5 }, { -0.45, -0.95 },
+    { 0.0, -0.95 }, { 0.45, -0.95 }, { -0.45, -0.05 }, { 0.45, -0.05 }, { -0.9, -0.5 },
+    { 0.9, -0.5 } };
   const double a = turn * 3.14159265358979323846 / 180.0;
-  for (int k = 0; k < 8; ++k)
+  for (int k = 0; k < std::min(count, 10); ++k)
   {
     const double x = xy[k][0];
     const double y = xy[k][1] + 0.5;
