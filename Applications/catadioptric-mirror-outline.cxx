@@ -3,6 +3,7 @@
 //
 //   catadioptric-mirror-outline CALIBRATION IMAGE (--radius R | --rim [--keep-axis])
 //                               [-o OUT.yaml] [--overlay OUT.png] [--max-rms PX]
+//                               [--max-uncertainty PERCENT]
 //
 // The calibration gives the camera's intrinsics and distortion; with --radius its mirror is
 // replaced by the sphere found, with --rim its quadric mirror's mirror_to_camera is the first
@@ -91,9 +92,17 @@ bool WriteOverlay(const std::string& path, const cv::Mat& bgr,
 
 namespace
 {
+// What a fit must meet: --max-rms (pixels) and --max-uncertainty (the centre's three sigmas, per
+// cent of its distance).
+struct FitLimits
+{
+  double maxRms = 3.0;
+  double maxUncertainty = 0.1;
+};
+
 // The sphere of that radius from the outline points: printed, written, drawn.
 int SphereFromItsOutline(catar::CameraModel camera, const cv::Mat& bgr,
-  const std::vector<catar::Vec2>& points, double radius, double maxRms,
+  const std::vector<catar::Vec2>& points, double radius, const FitLimits& limits,
   const std::string& imagePath, const std::string& output, const std::string& overlay)
 {
   std::string error;
@@ -104,6 +113,8 @@ int SphereFromItsOutline(catar::CameraModel camera, const cv::Mat& bgr,
     return Error(imagePath + ": " + error);
   }
   const std::vector<catar::Vec2> fitted = catar::SphereOutline(camera, centre, radius, 720);
+  const double maxRms = limits.maxRms;
+  const double uncertainty = 300.0 * report.centreSigma / report.distance; // 3 sigmas, per cent
   if (!(report.rmsPixels <= maxRms))
   {
     if (!overlay.empty())
@@ -118,8 +129,27 @@ int SphereFromItsOutline(catar::CameraModel camera, const cv::Mat& bgr,
       report.pointCount, report.rmsPixels, maxRms, overlay.empty() ? "" : ": see the overlay");
     return Error(imagePath + ": " + text);
   }
+  if (!(uncertainty <= limits.maxUncertainty))
+  {
+    if (!overlay.empty())
+    {
+      WriteOverlay(overlay, bgr, points, fitted, error);
+    }
+    char text[512];
+    std::snprintf(text, sizeof text,
+      "the outline fixes the sphere's centre only to %.3g %% of its distance (three sigmas: "
+      "%.3g; its %d points lie %.3g px RMS from the sphere's outline), more than "
+      "--max-uncertainty %.3g %% (a rim of little contrast against the backdrop: put a bright, "
+      "plain one behind the mirror; or a short arc of it, as a lens calibration that is not "
+      "right leaves%s)",
+      uncertainty, 3.0 * report.centreSigma, report.pointCount, report.rmsPixels,
+      limits.maxUncertainty, overlay.empty() ? "" : "; see the overlay");
+    return Error(imagePath + ": " + text);
+  }
   std::printf("centre: %.9g %.9g %.9g\n", centre.x(), centre.y(), centre.z());
   std::printf("distance: %.9g\n", report.distance);
+  std::printf("centre sigma: %.3g (%.3g %% of the distance)\n", report.centreSigma,
+    100.0 * report.centreSigma / report.distance);
   std::printf("outline points: %d\n", report.pointCount);
   std::printf("rms: %.4g px\n", report.rmsPixels);
 
@@ -235,11 +265,16 @@ int Run(int argc, char* argv[])
   app.add_option("--overlay", overlay,
     "write the image with the detected outline points (green) and the sphere's outline (red), "
     "also when the fit is refused");
-  double maxRms = 3.0;
+  FitLimits limits;
+  double& maxRms = limits.maxRms;
   app.add_option("--max-rms", maxRms,
     "refuse a fit whose points lie further than this RMS (pixels) from the sphere's outline: "
     "not a whole sphere's outline (a dome's cut, a wrong lens calibration, a wrong edge); "
     "default 3");
+  app.add_option("--max-uncertainty", limits.maxUncertainty,
+    "with --radius: refuse a fit that fixes the sphere's centre only to more than this per cent "
+    "of its distance at three sigmas (from the fit's residuals and their correlation along the "
+    "outline); default 0.1");
   const int parsed = catar::ParseCommandLine(app, kProgram, argc, argv);
   if (parsed >= 0)
   {
@@ -307,7 +342,7 @@ int Run(int argc, char* argv[])
   }
   return rim
     ? PlaceFromRim(camera, bgr, points, keepAxis, maxRms, imagePath, output, overlay)
-    : SphereFromItsOutline(camera, bgr, points, radius, maxRms, imagePath, output, overlay);
+    : SphereFromItsOutline(camera, bgr, points, radius, limits, imagePath, output, overlay);
 }
 } // namespace
 

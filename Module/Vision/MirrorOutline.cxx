@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,60 @@ double ConeCost(const std::vector<Vec3>& rays, double radius, const Vec3& c)
     cost += f * f;
   }
   return cost;
+}
+
+// One sigma of the centre along its worst direction (metres): s^2 (J^T J)^-1 from the angular
+// residuals' Jacobian, s from the residuals, times the residuals' correlation along the outline
+// (neighbouring points come from profiles smoothed along the rim, so their errors are not
+// independent): 1 + 2 sum of the autocorrelations at lags 1, 2, ... of the residuals in the
+// outline's order, up to the first below 0.05 (the effective number of independent points).
+double CentreSigma(const std::vector<Vec3>& rays, double radius, const Vec3& c)
+{
+  const std::size_t n = rays.size();
+  const double distance = c.norm();
+  const Vec3 axis = c / distance;
+  const double sinAlpha = radius / distance;
+  const double alpha = std::asin(sinAlpha);
+  const double tanAlpha = sinAlpha / std::sqrt((1.0 - sinAlpha) * (1.0 + sinAlpha));
+  Mat3 jtj = Mat3::Zero();
+  std::vector<double> f(n);
+  double squares = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    f[i] = AngleTo(rays[i], c) - alpha;
+    squares += f[i] * f[i];
+    const Vec3 across = rays[i] - rays[i].dot(axis) * axis;
+    const double acrossNorm = across.norm();
+    const Vec3 u = acrossNorm > 0.0 ? Vec3(across / acrossNorm) : Vec3::Zero();
+    const Vec3 j = (tanAlpha * axis - u) / distance;
+    jtj += j * j.transpose();
+  }
+  if (n <= 3 || !(squares > 0.0))
+  {
+    return n <= 3 ? std::numeric_limits<double>::infinity() : 0.0;
+  }
+  double correlation = 1.0;
+  for (std::size_t lag = 1; lag < n / 4; ++lag)
+  {
+    double sum = 0.0;
+    for (std::size_t i = lag; i < n; ++i)
+    {
+      sum += f[i] * f[i - lag];
+    }
+    const double rho = sum / squares;
+    if (rho < 0.05)
+    {
+      break;
+    }
+    correlation += 2.0 * rho;
+  }
+  const double variance = squares / static_cast<double>(n - 3) * correlation;
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(jtj);
+  if (!(es.eigenvalues()(0) > 0.0))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  return std::sqrt(variance / es.eigenvalues()(0));
 }
 
 // Levenberg-Marquardt on the three coordinates of c. Returns the iterations taken.
@@ -310,6 +365,7 @@ bool SphereFromOutline(const CameraModel& camera, double radius,
   const double cosAlpha = std::sqrt((1.0 - sinAlpha) * (1.0 + sinAlpha));
   report.halfAngle = std::asin(sinAlpha);
   report.rmsAngle = std::sqrt(ConeCost(rays, radius, c) / static_cast<double>(n));
+  report.centreSigma = CentreSigma(rays, radius, c);
   const Vec3 d = c / distance;
   Vec3 e1, e2;
   Perpendiculars(d, e1, e2);

@@ -35,6 +35,10 @@ struct SphereOutlineReport
   double distance = 0.0;  ///< |centre|: the sphere centre's distance from the camera centre
   double halfAngle = 0.0; ///< the tangent cone's half-angle, radians
   int iterations = 0;     ///< Levenberg-Marquardt iterations of the refinement
+  /// One sigma of the centre along its worst direction (the calibration's length unit), from the
+  /// fit's Jacobian and residuals, their correlation along the outline counted (the points in the
+  /// outline's order, as DetectMirrorOutline gives them).
+  double centreSigma = 0.0;
 };
 
 /// Finds the outline of the mirror in a camera frame of width x height RGBA8 pixels (row 0 at

@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <opencv2/core.hpp>
@@ -193,6 +194,75 @@ TEST(MirrorOutline, NoisyOutlineIsCloseToTheCentre)
     EXPECT_GT(median, 0.0);
     // The residual is the noise across the outline (0.3 px), less the fit's three parameters.
     EXPECT_NEAR(Percentile(rms, 0.5), 0.3, 0.03);
+  }
+}
+
+// The centre's reported sigma (SphereOutlineReport::centreSigma) against the spread of the
+// centres over noisy trials: with independent noise on each point (0.3 px), and with noise that
+// is correlated along the outline (a moving average over 7 neighbours, as profiles smoothed along
+// the rim give), which independent points' sigma would understate by about 2.6 times. Also
+// half the outline (a dome's limb).
+TEST(MirrorOutline, CentreSigmaMatchesTheSpread)
+{
+  const Placement s = KnownSpheres().front();
+  for (const bool correlated : { false, true })
+  {
+    for (const bool half : { false, true })
+    {
+      SCOPED_TRACE(std::string(correlated ? "correlated" : "independent") +
+        (half ? ", half the outline" : ", whole outline"));
+      std::mt19937 rng(correlated ? 7 : 5);
+      std::normal_distribution<double> noise(0.0, correlated ? 0.3 * std::sqrt(7.0) : 0.3);
+      std::vector<Vec3> centres;
+      double sigmas = 0.0;
+      const int trials = 300;
+      for (int trial = 0; trial < trials; ++trial)
+      {
+        std::vector<Vec2> outline = SphereOutline(s.camera, s.centre, s.radius, 400);
+        if (half)
+        {
+          outline.resize(outline.size() / 2);
+        }
+        std::vector<Vec2> raw(outline.size());
+        for (Vec2& r : raw)
+        {
+          r = Vec2(noise(rng), noise(rng));
+        }
+        for (std::size_t i = 0; i < outline.size(); ++i)
+        {
+          Vec2 offset = Vec2::Zero();
+          const int reach = correlated ? 3 : 0;
+          for (int k = -reach; k <= reach; ++k)
+          {
+            const std::size_t j = std::clamp<std::size_t>(i + k, 0, raw.size() - 1);
+            offset += raw[j] / (2.0 * reach + 1.0);
+          }
+          outline[i] += offset;
+        }
+        Vec3 centre;
+        SphereOutlineReport report;
+        std::string error;
+        ASSERT_TRUE(SphereFromOutline(s.camera, s.radius, outline, centre, report, error)) << error;
+        centres.push_back(centre);
+        sigmas += report.centreSigma / trials;
+      }
+      Vec3 mean = Vec3::Zero();
+      for (const Vec3& c : centres)
+      {
+        mean += c / trials;
+      }
+      Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+      for (const Vec3& c : centres)
+      {
+        covariance += (c - mean) * (c - mean).transpose() / (trials - 1);
+      }
+      const double spread = std::sqrt(
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues().maxCoeff());
+      std::cout << "[ outline  ] " << (correlated ? "correlated" : "independent") << " noise, "
+                << (half ? "half" : "whole") << " outline: reported sigma " << 1e6 * sigmas
+                << " um, spread " << 1e6 * spread << " um" << std::endl;
+      EXPECT_NEAR(sigmas / spread, 1.0, 0.25);
+    }
   }
 }
 

@@ -94,10 +94,13 @@ TEST(MirrorOutlinePovRay, BrightAndDarkBackdrops)
       std::cout << "[ outline  ] " << c.name << (noisy ? " noisy" : " clean") << ": "
                 << report.pointCount << " points, rms " << report.rmsPixels << " px; centre error "
                 << 1e3 * (centre - c.scene.centre).norm() << " mm (" << percent << " % of "
-                << 1e3 * distance << " mm)" << std::endl;
-      // Measured: 0.041 to 0.055 %; the strong edges alone (a dark backdrop): 7.7 to 41 %.
+                << 1e3 * distance << " mm), sigma " << 100.0 * report.centreSigma / distance << " %"
+                << std::endl;
+      // Measured: 0.0008 to 0.021 %, fixed to 0.0008-0.043 % at three sigmas; the strong edges
+      // alone (a dark backdrop): 7.7 to 41 %.
       EXPECT_LT(percent, 0.1);
       EXPECT_LT(report.rmsPixels, 0.5);
+      EXPECT_LT(300.0 * report.centreSigma / distance, 0.1) << "a good fit refused";
     }
   }
 }
@@ -160,11 +163,21 @@ TEST(MirrorOutlinePovRay, DomeMirror)
       const double percent = 100.0 * (centre - scene.centre).norm() / distance;
       std::cout << "[ outline  ] " << name << (noisy ? " noisy" : " clean") << ": "
                 << report.pointCount << " points, rms " << report.rmsPixels << " px; centre error "
-                << 1e3 * (centre - scene.centre).norm() << " mm (" << percent << " %)" << std::endl;
-      // Measured: 0.0007 to 0.010 % (bright), 0.014 to 0.137 % (dark: one draw of eight past
-      // 0.1 %); the strong edges' ellipse alone (before the rim's search and the cones): 40 to
-      // 59 %.
-      EXPECT_LT(percent, backdrop > 0.5 || !noisy ? 0.1 : 0.15);
+                << 1e3 * (centre - scene.centre).norm() << " mm (" << percent << " %), sigma "
+                << 100.0 * report.centreSigma / distance << " %" << std::endl;
+      // Measured: 0.0007 to 0.010 % (bright), 0.014 to 0.137 % (dark, noisy; the strong edges'
+      // ellipse alone, before the rim's search and the cones: 40 to 59 %). Within 0.1 %, or
+      // refused: catadioptric-mirror-outline refuses a centre fixed only to more than 0.1 % of
+      // its distance at three sigmas (--max-uncertainty), which six of the eight dark, noisy
+      // draws are (three sigmas 0.11-0.15 %), the one 0.137 % off among them.
+      const double uncertainty = 300.0 * report.centreSigma / distance;
+      EXPECT_TRUE(percent < 0.1 || uncertainty > 0.1)
+        << percent << " % off, yet fixed to " << uncertainty << " % at three sigmas";
+      if (backdrop > 0.5 || !noisy)
+      {
+        EXPECT_LT(percent, 0.1);
+        EXPECT_LT(uncertainty, 0.1) << "a good fit refused";
+      }
     }
   }
 }
