@@ -601,6 +601,28 @@ TEST(MirrorOutline, ProgramFindsTheCentre)
   EXPECT_LT((printed - truth).norm(), 0.5e-3) << run.output;
   EXPECT_NE(run.output.find("\noutline points: "), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\nrms: "), std::string::npos) << run.output;
+  const std::size_t sigmaAt = run.output.find("\ncentre sigma: ");
+  ASSERT_NE(sigmaAt, std::string::npos) << run.output;
+  double sigma = 0.0;
+  std::istringstream(run.output.substr(sigmaAt + 15)) >> sigma;
+  EXPECT_GT(sigma, 0.0) << run.output;
+  EXPECT_LT(sigma, 0.5e-3) << run.output;
+
+  // A centre the outline fixes less well than --max-uncertainty asks: refused, nothing written,
+  // the overlay still drawn.
+  {
+    std::remove(written.c_str());
+    std::remove(overlay.c_str());
+    const ProgramRun refused = RunOutlineProgram("'" + calibration + "' '" + image +
+      "' --radius 0.05 --max-uncertainty 1e-6 -o '" + written + "' --overlay '" + overlay + "'");
+    EXPECT_EQ(refused.status, 1) << refused.output;
+    EXPECT_NE(refused.output.find("--max-uncertainty"), std::string::npos) << refused.output;
+    EXPECT_NE(::access(written.c_str(), F_OK), 0) << "a refused fit was written";
+    EXPECT_EQ(::access(overlay.c_str(), F_OK), 0) << "no overlay for the refused fit";
+  }
+  run = RunOutlineProgram("'" + calibration + "' '" + image + "' --radius 0.05 -o '" + written +
+    "' --overlay '" + overlay + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
 
   CameraModel loaded;
   ASSERT_TRUE(LoadCalibration(written, loaded, error)) << error;
