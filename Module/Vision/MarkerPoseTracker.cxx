@@ -87,11 +87,14 @@ const FramePose& MarkerPoseTracker::Track(
   else
   {
     f.result = PoseFromMarkers(camera, this->BoardLayout, found, this->BoardLayout.pose);
-    // Where the markers must be: this frame's pose, else the last reliable one.
+    // Where the markers must be: this frame's pose when it is reliable, else the last reliable
+    // one (the previous frame's, as a rule), else this frame's.
     if (f.result.ok || this->HaveReliable)
     {
       CameraModel posed = camera;
-      posed.worldToCamera = f.result.ok ? f.result.worldToCamera : this->Anchor.worldToCamera;
+      posed.worldToCamera = (f.result.ok && (f.result.reliable || !this->HaveReliable))
+        ? f.result.worldToCamera
+        : this->Anchor.worldToCamera;
       f.markersRecovered =
         RecoverMarkers(width, height, rgba, posed, this->BoardLayout, candidates, found);
       // The corners on the markers' edges, the sides bent as the pose projects them; the pose

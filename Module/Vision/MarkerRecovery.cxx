@@ -9,12 +9,17 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace catar
 {
 namespace
 {
+// Markers whose predicted image is smaller than this on its shorter side (pixels) are not
+// looked for: too few pixels a cell to read their bits.
+constexpr double kMinSearchSide = 10.0;
+
 // The grey level of a frame at a pixel (bilinear; pixel centres at integers, as OpenCV's); -1
 // outside the frame.
 double Grey(const cv::Mat& grey, const Vec2& p)
@@ -109,6 +114,69 @@ bool ReadsAs(const cv::Mat& grey, const Projector& projector, const BoardMarker&
   }
   return borderWrong <= 2 && bitsWrong <= 1;
 }
+
+// The markers and undecoded quadrilaterals DetectMarkers finds in the frame's region around a
+// predicted marker (its box and half its longer side more, 6 px at least), enlarged to about
+// 60 px a side for a small marker (OpenCV's contours need some pixels per cell), mapped back to
+// the frame's pixels.
+void SearchAround(const cv::Mat& grey, const std::array<Vec2, 4>& predicted,
+  const std::string& dictionary, std::vector<MarkerDetection>& found,
+  std::vector<std::array<Vec2, 4>>& quads)
+{
+  found.clear();
+  quads.clear();
+  Vec2 low = predicted[0];
+  Vec2 high = predicted[0];
+  double longer = 0.0;
+  for (std::size_t c = 0; c < 4; ++c)
+  {
+    low = low.cwiseMin(predicted[c]);
+    high = high.cwiseMax(predicted[c]);
+    longer = std::max(longer, (predicted[c] - predicted[(c + 1) % 4]).norm());
+  }
+  const double margin = std::max(6.0, 0.5 * longer);
+  const int x0 = std::max(0, static_cast<int>(std::floor(low.x() - margin)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(low.y() - margin)));
+  const int x1 = std::min(grey.cols, static_cast<int>(std::ceil(high.x() + margin)) + 1);
+  const int y1 = std::min(grey.rows, static_cast<int>(std::ceil(high.y() + margin)) + 1);
+  if (x1 - x0 < 8 || y1 - y0 < 8 || longer > 400.0)
+  {
+    return;
+  }
+  const double scale = std::clamp(60.0 / longer, 1.0, 4.0);
+  cv::Mat region;
+  cv::resize(grey(cv::Rect(x0, y0, x1 - x0, y1 - y0)), region, cv::Size(), scale, scale,
+    scale > 1.0 ? cv::INTER_CUBIC : cv::INTER_LINEAR);
+  cv::Mat rgba;
+  cv::cvtColor(region, rgba, cv::COLOR_GRAY2RGBA);
+  std::string error;
+  std::vector<std::array<Vec2, 4>> undecoded;
+  if (!DetectMarkers(rgba.cols, rgba.rows, rgba.data, dictionary, true, found, error, &undecoded))
+  {
+    found.clear();
+    return;
+  }
+  // Pixel centres at integers: a region pixel's centre x lies at (x + 0.5) / scale - 0.5 of
+  // the region's first pixel.
+  const auto back = [&](const Vec2& p) {
+    return Vec2(x0 + (p.x() + 0.5) / scale - 0.5, y0 + (p.y() + 0.5) / scale - 0.5);
+  };
+  for (MarkerDetection& d : found)
+  {
+    for (Vec2& c : d.corners)
+    {
+      c = back(c);
+    }
+  }
+  for (std::array<Vec2, 4>& q : undecoded)
+  {
+    for (Vec2& c : q)
+    {
+      c = back(c);
+    }
+    quads.push_back(q);
+  }
+}
 } // namespace
 
 int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
@@ -116,7 +184,7 @@ int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const Camera
   std::vector<MarkerDetection>& detections)
 {
   const int cells = MarkerCells(board.dictionary);
-  if (cells <= 0 || candidates.empty() || !rgba || width <= 1 || height <= 1)
+  if (cells <= 0 || !rgba || width <= 1 || height <= 1)
   {
     return 0;
   }
@@ -154,33 +222,67 @@ int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const Camera
         (predicted[static_cast<std::size_t>(c)] - predicted[static_cast<std::size_t>((c + 1) % 4)])
           .norm());
     }
-    const double tolerance = std::max(3.0, 0.25 * shorter);
-    std::size_t bestCandidate = candidates.size();
-    double bestDistance = tolerance;
-    std::array<Vec2, 4> bestOrdered = predicted;
-    for (std::size_t k = 0; k < candidates.size(); ++k)
-    {
-      std::array<Vec2, 4> ordered = predicted;
-      const double distance = used[k] ? tolerance : Match(candidates[k], predicted, ordered);
-      if (distance < bestDistance)
-      {
-        bestDistance = distance;
-        bestCandidate = k;
-        bestOrdered = ordered;
-      }
-    }
-    std::vector<std::uint8_t> expected;
-    std::string error;
-    if (bestCandidate == candidates.size() ||
-      !MarkerImage(board.dictionary, marker.id, cells, 0, expected, error) ||
-      !ReadsAs(grey, projector, marker, expected, cells))
+    if (!(shorter >= kMinSearchSide))
     {
       continue;
     }
-    used[bestCandidate] = true;
+    const double tolerance = std::max(3.0, 0.25 * shorter);
+    // The closest of `quads` to the prediction within the tolerance (not one already taken).
+    const auto closest = [&](const std::vector<std::array<Vec2, 4>>& quads,
+                           const std::vector<bool>& taken, std::array<Vec2, 4>& ordered) {
+      std::size_t best = quads.size();
+      double bestDistance = tolerance;
+      for (std::size_t k = 0; k < quads.size(); ++k)
+      {
+        std::array<Vec2, 4> o = predicted;
+        const double distance =
+          k < taken.size() && taken[k] ? tolerance : Match(quads[k], predicted, o);
+        if (distance < bestDistance)
+        {
+          bestDistance = distance;
+          best = k;
+          ordered = o;
+        }
+      }
+      return best;
+    };
+    std::vector<std::uint8_t> expected;
+    std::string error;
+    if (!MarkerImage(board.dictionary, marker.id, cells, 0, expected, error))
+    {
+      continue;
+    }
     MarkerDetection d;
     d.id = marker.id;
-    d.corners = bestOrdered;
+    const std::size_t k = closest(candidates, used, d.corners);
+    if (k < candidates.size())
+    {
+      if (!ReadsAs(grey, projector, marker, expected, cells))
+      {
+        continue;
+      }
+      used[k] = true;
+    }
+    else
+    {
+      // No quadrilateral there in the whole frame's search: the region where the marker must
+      // be, searched again enlarged (a small marker's contours break up in a noisy frame).
+      std::vector<MarkerDetection> here;
+      std::vector<std::array<Vec2, 4>> quads;
+      SearchAround(grey, predicted, board.dictionary, here, quads);
+      for (const MarkerDetection& h : here)
+      {
+        if (h.id == marker.id)
+        {
+          quads.insert(quads.begin(), h.corners);
+        }
+      }
+      if (closest(quads, {}, d.corners) == quads.size() ||
+        !ReadsAs(grey, projector, marker, expected, cells))
+      {
+        continue;
+      }
+    }
     // The candidate's corners come from a polygon fitted to a thresholded contour (whole
     // pixels): refined on the image's gradients in a window of about a tenth of the marker's
     // shorter side (3 px a side for a 35 px marker). On POV-Ray's frames this took the worst pose

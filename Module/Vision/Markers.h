@@ -93,7 +93,11 @@ bool DetectMarkers(int width, int height, const std::uint8_t* rgba, const std::s
 /// two of the border's), is added to `detections` with its own corners (refined to sub-pixel), in
 /// the marker's order.
 /// A marker seen through a mirror near its rim has curved sides, and OpenCV reads its bits
-/// through a plane's homography: that is where decoding fails. Returns the number added.
+/// through a plane's homography: that is where decoding fails. A missing marker that no candidate
+/// matches (a small one in a noisy frame, whose contours break up) is searched for again in the
+/// region around its predicted image (half its longer side more), enlarged to about 60 px a
+/// side; what is found there is matched and read in the same way. Markers predicted under 10 px
+/// on their shorter side are not looked for. Returns the number added.
 int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
   const MarkerBoard& board, const std::vector<std::array<Vec2, 4>>& candidates,
   std::vector<MarkerDetection>& detections);
