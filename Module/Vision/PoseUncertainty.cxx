@@ -86,38 +86,50 @@ PoseUncertainty EstimatePoseUncertainty(const Projector& projector,
   Eigen::MatrixXd jacobian(rows, 6);
   double squares = 0.0;
   const Vector6 zero = Vector6::Zero();
+  // The point in the camera frame moves with the pose's x = (turn w, centre shift) as
+  // d p / d w = R [X - c]x and d p / d shift = -R (R world to camera, at x = 0); the pixel's
+  // derivative with respect to p by central differences, each step's projection started from
+  // the reflection point.
+  const Mat3 toCamera = camera.rotation.transpose();
   for (std::size_t k = 0; k < used.size(); ++k)
   {
     const PoseObservation& o = observations[used[k]];
-    const ProjectedPoint at = projector.ProjectCamera(camera.ToCamera(zero, o.world));
+    const Vec3 p = camera.ToCamera(zero, o.world);
+    const ProjectedPoint at = projector.ProjectCamera(p);
     if (!HasProjection(at.status))
     {
       return Unknown(floor);
     }
     squares += (at.pixel - o.pixel).squaredNorm();
-    for (int c = 0; c < 6; ++c)
+    const double h = kStep * std::max(1.0, p.norm());
+    Eigen::Matrix<double, 2, 3> dPixel;
+    for (int c = 0; c < 3; ++c)
     {
-      Vector6 step = Vector6::Zero();
-      step[c] = kStep;
-      const ProjectedPoint plus = projector.ProjectCamera(camera.ToCamera(step, o.world));
-      const ProjectedPoint minus = projector.ProjectCamera(camera.ToCamera(-step, o.world));
-      Vec2 derivative;
+      Vec3 step = Vec3::Zero();
+      step[c] = h;
+      const ProjectedPoint plus = projector.ProjectWorldNear(p + step, at.mirrorPoint);
+      const ProjectedPoint minus = projector.ProjectWorldNear(p - step, at.mirrorPoint);
       if (HasProjection(plus.status) && HasProjection(minus.status))
       {
-        derivative = (plus.pixel - minus.pixel) / (2.0 * kStep);
+        dPixel.col(c) = (plus.pixel - minus.pixel) / (2.0 * h);
       }
       else if (HasProjection(plus.status) || HasProjection(minus.status))
       {
         // One-sided at the mirror's rim.
-        derivative = HasProjection(plus.status) ? Vec2((plus.pixel - at.pixel) / kStep)
-                                                : Vec2((at.pixel - minus.pixel) / kStep);
+        dPixel.col(c) = HasProjection(plus.status) ? Vec2((plus.pixel - at.pixel) / h)
+                                                   : Vec2((at.pixel - minus.pixel) / h);
       }
       else
       {
         return Unknown(floor);
       }
-      jacobian.block<2, 1>(static_cast<Eigen::Index>(2 * k), c) = derivative;
     }
+    const Vec3 d = o.world - camera.centre;
+    Mat3 cross;
+    cross << 0.0, -d.z(), d.y(), d.z(), 0.0, -d.x(), -d.y(), d.x(), 0.0;
+    const auto row = static_cast<Eigen::Index>(2 * k);
+    jacobian.block<2, 3>(row, 0) = dPixel * (toCamera * cross);
+    jacobian.block<2, 3>(row, 3) = -dPixel * toCamera;
   }
   const double estimated = std::sqrt(squares / static_cast<double>(rows - 6));
   const double sigma = std::max(floor, estimated);
