@@ -40,6 +40,14 @@ inline bool HasProjection(ProjectionStatus s)
   return s == ProjectionStatus::Valid || s == ProjectionStatus::OutsideImage;
 }
 
+/// Two unit vectors perpendicular to the unit vector d and to each other (d, e1, e2
+/// right-handed).
+inline void PerpendicularBasis(const Vec3& d, Vec3& e1, Vec3& e2)
+{
+  e1 = d.unitOrthogonal();
+  e2 = d.cross(e1);
+}
+
 /// Which algorithm finds the reflection point.
 enum class SolverType : int
 {

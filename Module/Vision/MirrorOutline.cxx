@@ -35,14 +35,6 @@ constexpr double kCollinearRatio = 1e-12;
 
 // ---- The cone -------------------------------------------------------------------------------
 
-// Two unit vectors that make a right-handed orthonormal basis with the unit vector d.
-void Perpendiculars(const Vec3& d, Vec3& e1, Vec3& e2)
-{
-  const Vec3 other = std::abs(d.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  e1 = d.cross(other).normalized();
-  e2 = d.cross(e1);
-}
-
 // The angle between unit ray r and the direction of c (accurate at small angles too).
 double AngleTo(const Vec3& r, const Vec3& c)
 {
@@ -226,7 +218,7 @@ std::vector<Vec2> SphereOutline(
   const double sinAlpha = radius / distance;
   const double cosAlpha = std::sqrt((1.0 - sinAlpha) * (1.0 + sinAlpha));
   Vec3 e1, e2;
-  Perpendiculars(axis, e1, e2);
+  PerpendicularBasis(axis, e1, e2);
   outline.reserve(static_cast<std::size_t>(count));
   for (int k = 0; k < count; ++k)
   {
@@ -368,7 +360,7 @@ bool SphereFromOutline(const CameraModel& camera, double radius,
   report.centreSigma = CentreSigma(rays, radius, c);
   const Vec3 d = c / distance;
   Vec3 e1, e2;
-  Perpendiculars(d, e1, e2);
+  PerpendicularBasis(d, e1, e2);
   double sum = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {

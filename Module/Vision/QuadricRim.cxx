@@ -36,13 +36,6 @@ struct Rim
   Vec3 normal = Vec3::UnitZ();
 };
 
-// Two unit vectors perpendicular to the unit vector d (and to each other).
-void Across(const Vec3& d, Vec3& e1, Vec3& e2)
-{
-  e1 = d.unitOrthogonal();
-  e2 = d.cross(e1);
-}
-
 // The residuals of the rays against the rim (radius rho): where each ray meets the rim's plane,
 // its distance from the rim circle, scaled to about a pixel (focal / depth). False when a ray
 // misses the plane in front of the camera.
@@ -136,7 +129,7 @@ bool FitRim(const std::vector<Vec3>& rays, const Rim& start, double rho, double 
   {
     fit.iterations = iteration + 1;
     Vec3 e1, e2;
-    Across(rim.normal, e1, e2);
+    PerpendicularBasis(rim.normal, e1, e2);
     Eigen::MatrixXd J;
     if (!jacobian(e1, e2, J))
     {
@@ -176,7 +169,7 @@ bool FitRim(const std::vector<Vec3>& rays, const Rim& start, double rho, double 
   }
   fit.cost = cost;
   Vec3 e1, e2;
-  Across(rim.normal, e1, e2);
+  PerpendicularBasis(rim.normal, e1, e2);
   Eigen::MatrixXd J;
   if (jacobian(e1, e2, J) && n > unknowns)
   {
@@ -443,7 +436,7 @@ std::vector<Vec2> RimOutline(const CameraModel& camera, const RimOutlineReport& 
 {
   std::vector<Vec2> line;
   Vec3 e1, e2;
-  Across(rim.axis, e1, e2);
+  PerpendicularBasis(rim.axis, e1, e2);
   for (int k = 0; k < count; ++k)
   {
     const double angle = 2.0 * kPi * k / count;
