@@ -13,6 +13,7 @@
 #include "MirrorOutline.h"
 
 #include "CommandLine.h"
+#include "FileOutput.h"
 #include "ImageFile.h"
 #include "RunMain.h"
 
@@ -73,20 +74,25 @@ bool WriteOverlay(const std::string& path, const cv::Mat& bgr,
       drawn.at<cv::Vec3b>(y, x) = cv::Vec3b(0, 255, 0);
     }
   }
+  // Encoded in memory (the format by the name's extension), then written whole or not at all.
+  const std::size_t dot = path.find_last_of('.');
+  const std::string extension = dot == std::string::npos ? std::string() : path.substr(dot);
+  std::vector<unsigned char> encoded;
   try
   {
-    if (cv::imwrite(path, drawn))
+    if (extension.empty() || !cv::imencode(extension, drawn, encoded))
     {
-      return true;
+      error = "cannot write '" + path + "': name an image format by its extension (.png, .jpg)";
+      return false;
     }
   }
-  catch (const cv::Exception& e)
+  catch (const cv::Exception&)
   {
-    error = "cannot write '" + path + "': " + e.what();
+    error = "cannot write '" + path + "': no image format has the extension '" + extension +
+      "' (.png, .jpg)";
     return false;
   }
-  error = "cannot write '" + path + "'";
-  return false;
+  return catar::WriteWholeFile(path, std::string(encoded.begin(), encoded.end()), error);
 }
 } // namespace
 
