@@ -98,6 +98,19 @@ bool WriteOverlay(const std::string& path, const cv::Mat& bgr,
 
 namespace
 {
+// A fit refused: the overlay still drawn (to show why), the reason printed; exit status 1.
+int Refuse(const std::string& why, const std::string& imagePath, const std::string& overlay,
+  const cv::Mat& bgr, const std::vector<catar::Vec2>& points,
+  const std::vector<catar::Vec2>& fitted)
+{
+  std::string error;
+  if (!overlay.empty())
+  {
+    WriteOverlay(overlay, bgr, points, fitted, error);
+  }
+  return Error(imagePath + ": " + why);
+}
+
 // What a fit must meet: --max-rms (pixels) and --max-uncertainty (the centre's three sigmas, per
 // cent of its distance).
 struct FitLimits
@@ -121,26 +134,21 @@ int SphereFromItsOutline(catar::CameraModel camera, const cv::Mat& bgr,
   const std::vector<catar::Vec2> fitted = catar::SphereOutline(camera, centre, radius, 720);
   const double maxRms = limits.maxRms;
   const double uncertainty = 300.0 * report.centreSigma / report.distance; // 3 sigmas, per cent
+  const auto refuse = [&](const std::string& why) {
+    return Refuse(why, imagePath, overlay, bgr, points, fitted);
+  };
   if (!(report.rmsPixels <= maxRms))
   {
-    if (!overlay.empty())
-    {
-      WriteOverlay(overlay, bgr, points, fitted, error);
-    }
     char text[256];
     std::snprintf(text, sizeof text,
       "the outline found does not fit a sphere's: its %d points lie %.3g px (RMS) from the best "
       "sphere's outline, more than --max-rms %.3g px (a wrong lens calibration, or an edge that "
       "is not the mirror's rim%s)",
       report.pointCount, report.rmsPixels, maxRms, overlay.empty() ? "" : ": see the overlay");
-    return Error(imagePath + ": " + text);
+    return refuse(text);
   }
   if (!(uncertainty <= limits.maxUncertainty))
   {
-    if (!overlay.empty())
-    {
-      WriteOverlay(overlay, bgr, points, fitted, error);
-    }
     char text[512];
     std::snprintf(text, sizeof text,
       "the outline fixes the sphere's centre only to %.3g %% of its distance (three sigmas: "
@@ -150,7 +158,7 @@ int SphereFromItsOutline(catar::CameraModel camera, const cv::Mat& bgr,
       "right leaves%s)",
       uncertainty, 3.0 * report.centreSigma, report.pointCount, report.rmsPixels,
       limits.maxUncertainty, overlay.empty() ? "" : "; see the overlay");
-    return Error(imagePath + ": " + text);
+    return refuse(text);
   }
   std::printf("centre: %.9g %.9g %.9g\n", centre.x(), centre.y(), centre.z());
   std::printf("distance: %.9g\n", report.distance);
@@ -188,11 +196,7 @@ int PlaceFromRim(catar::CameraModel camera, const cv::Mat& bgr,
   }
   const std::vector<catar::Vec2> fitted = catar::RimOutline(camera, report, 720);
   const auto refuse = [&](const std::string& why) {
-    if (!overlay.empty())
-    {
-      WriteOverlay(overlay, bgr, points, fitted, error);
-    }
-    return Error(imagePath + ": " + why);
+    return Refuse(why, imagePath, overlay, bgr, points, fitted);
   };
   constexpr double kDegrees = 180.0 / 3.14159265358979323846;
   char text[512];

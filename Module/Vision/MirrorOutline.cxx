@@ -54,6 +54,37 @@ double ConeCost(const std::vector<Vec3>& rays, double radius, const Vec3& c)
   return cost;
 }
 
+// The cone of rays tangent to the sphere of that radius centred at c: a ray's angular residual
+// angle(r, c) - asin(R / |c|) and its gradient with respect to c (d angle / d c = -u / |c|, u the
+// unit part of r across c; d asin(R / |c|) / d c = -tan(a) / |c| axis).
+struct TangentCone
+{
+  TangentCone(double radius, const Vec3& centre)
+    : c(centre)
+    , distance(centre.norm())
+    , axis(centre / distance)
+  {
+    const double sinAlpha = radius / this->distance;
+    this->alpha = std::asin(sinAlpha);
+    this->tanAlpha = sinAlpha / std::sqrt((1.0 - sinAlpha) * (1.0 + sinAlpha));
+  }
+
+  double Residual(const Vec3& r, Vec3& gradient) const
+  {
+    const Vec3 across = r - r.dot(this->axis) * this->axis;
+    const double acrossNorm = across.norm();
+    const Vec3 u = acrossNorm > 0.0 ? Vec3(across / acrossNorm) : Vec3::Zero();
+    gradient = (this->tanAlpha * this->axis - u) / this->distance;
+    return AngleTo(r, this->c) - this->alpha;
+  }
+
+  Vec3 c;
+  double distance;
+  Vec3 axis;
+  double alpha = 0.0;
+  double tanAlpha = 0.0;
+};
+
 // One sigma of the centre along its worst direction (metres): s^2 (J^T J)^-1 from the angular
 // residuals' Jacobian, s from the residuals, times the residuals' correlation along the outline
 // (neighbouring points come from profiles smoothed along the rim, so their errors are not
@@ -62,22 +93,15 @@ double ConeCost(const std::vector<Vec3>& rays, double radius, const Vec3& c)
 double CentreSigma(const std::vector<Vec3>& rays, double radius, const Vec3& c)
 {
   const std::size_t n = rays.size();
-  const double distance = c.norm();
-  const Vec3 axis = c / distance;
-  const double sinAlpha = radius / distance;
-  const double alpha = std::asin(sinAlpha);
-  const double tanAlpha = sinAlpha / std::sqrt((1.0 - sinAlpha) * (1.0 + sinAlpha));
+  const TangentCone cone(radius, c);
   Mat3 jtj = Mat3::Zero();
   std::vector<double> f(n);
   double squares = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    f[i] = AngleTo(rays[i], c) - alpha;
+    Vec3 j;
+    f[i] = cone.Residual(rays[i], j);
     squares += f[i] * f[i];
-    const Vec3 across = rays[i] - rays[i].dot(axis) * axis;
-    const double acrossNorm = across.norm();
-    const Vec3 u = acrossNorm > 0.0 ? Vec3(across / acrossNorm) : Vec3::Zero();
-    const Vec3 j = (tanAlpha * axis - u) / distance;
     jtj += j * j.transpose();
   }
   if (n <= 3 || !(squares > 0.0))
@@ -116,21 +140,13 @@ int RefineCentre(const std::vector<Vec3>& rays, double radius, Vec3& c)
   int iteration = 0;
   for (; iteration < 100; ++iteration)
   {
-    const double distance = c.norm();
-    const Vec3 axis = c / distance;
-    const double sinAlpha = radius / distance;
-    const double alpha = std::asin(sinAlpha);
-    const double tanAlpha = sinAlpha / std::sqrt((1.0 - sinAlpha) * (1.0 + sinAlpha));
+    const TangentCone cone(radius, c);
     Mat3 jtj = Mat3::Zero();
     Vec3 jtf = Vec3::Zero();
     for (const Vec3& r : rays)
     {
-      const double f = AngleTo(r, c) - alpha;
-      // d angle / d c = -u / |c|, u the unit part of r across c; d alpha / d c = -tan(a)/|c| axis.
-      const Vec3 across = r - r.dot(axis) * axis;
-      const double acrossNorm = across.norm();
-      const Vec3 u = acrossNorm > 0.0 ? Vec3(across / acrossNorm) : Vec3::Zero();
-      const Vec3 j = (tanAlpha * axis - u) / distance;
+      Vec3 j;
+      const double f = cone.Residual(r, j);
       jtj += j * j.transpose();
       jtf += j * f;
     }
