@@ -77,8 +77,11 @@ struct MarkerDetection
 
 /// The markers of `dictionary` in an RGBA8 frame (top row first). mirrored: look in the
 /// left-right flipped frame (markers seen in a convex mirror), corners mapped back. Corners
-/// from lines fitted to each marker's contour. False with a sentence for an unknown dictionary or
-/// an empty frame; no markers is not an error.
+/// from lines fitted to each marker's contour (RefineMarkerCorners then puts them on the edges).
+/// The adaptive threshold keeps pixels darker than their neighbourhood by 3.25 sigmas of the
+/// frame's noise (estimated from it), 7 grey levels at least, so that a noisy frame costs what a
+/// clean one does. False with a sentence for an unknown dictionary or an empty frame; no markers
+/// is not an error.
 bool DetectMarkers(int width, int height, const std::uint8_t* rgba, const std::string& dictionary,
   bool mirrored, std::vector<MarkerDetection>& detections, std::string& error,
   std::vector<std::array<Vec2, 4>>* candidates = nullptr);
