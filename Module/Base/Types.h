@@ -40,6 +40,14 @@ inline bool HasProjection(ProjectionStatus s)
   return s == ProjectionStatus::Valid || s == ProjectionStatus::OutsideImage;
 }
 
+/// The matrix of the cross product with v: Skew(v) x = v.cross(x).
+inline Mat3 Skew(const Vec3& v)
+{
+  Mat3 m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
 /// Two unit vectors perpendicular to the unit vector d and to each other (d, e1, e2
 /// right-handed).
 inline void PerpendicularBasis(const Vec3& d, Vec3& e1, Vec3& e2)

@@ -45,6 +45,30 @@ ProjectedPoint Projector::ProjectWorldNear(const Vec3& pWorld, const Vec3& mirro
   return this->ProjectCameraFrom(this->Pose.ToCamera(pWorld), SolverType::Iterative, &mirrorGuess);
 }
 
+bool Projector::PixelDerivative(
+  const Vec3& p, const ProjectedPoint& at, Eigen::Matrix<double, 2, 3>& d) const
+{
+  const double h = 1e-6 * std::max(1.0, p.norm());
+  bool all = true;
+  for (int k = 0; k < 3; ++k)
+  {
+    Vec3 step = Vec3::Zero();
+    step[k] = h;
+    const ProjectedPoint plus =
+      this->ProjectCameraFrom(p + step, SolverType::Iterative, &at.mirrorPoint);
+    const ProjectedPoint minus =
+      this->ProjectCameraFrom(p - step, SolverType::Iterative, &at.mirrorPoint);
+    const bool hasPlus = HasProjection(plus.status);
+    const bool hasMinus = HasProjection(minus.status);
+    d.col(k) = hasPlus && hasMinus ? Vec2((plus.pixel - minus.pixel) / (2.0 * h))
+      : hasPlus                    ? Vec2((plus.pixel - at.pixel) / h)
+      : hasMinus                   ? Vec2((at.pixel - minus.pixel) / h)
+                                   : Vec2::Zero();
+    all = all && (hasPlus || hasMinus);
+  }
+  return all;
+}
+
 void Projector::ProjectWorldNear(std::size_t n, const Vec3* pWorld, const Vec3* mirrorGuess,
   ProjectedPoint* out, bool pixels) const
 {

@@ -44,6 +44,13 @@ public:
   /// centroid): the same answer as either solver (the same safeguarded Newton, to the same
   /// tolerance) in fewer steps. A guess far off costs steps, never accuracy.
   ProjectedPoint ProjectWorldNear(const Vec3& pWorld, const Vec3& mirrorGuess) const;
+  /// The pixel's derivative with respect to the point p of the camera frame, whose projection
+  /// `at` is (ProjectCamera(p)): central differences of 1e-6 |p| (1e-6 at least) along each
+  /// axis, each step's projection started from at.mirrorPoint; one-sided where a step loses the
+  /// image (near the mirror's rim). False when neither step of some axis has an image (that
+  /// column left zero).
+  bool PixelDerivative(
+    const Vec3& p, const ProjectedPoint& at, Eigen::Matrix<double, 2, 3>& d) const;
   /// ProjectWorldNear for n points: out[i] = ProjectWorldNear(pWorld[i], mirrorGuess[i]), the same
   /// results, solved GetBatchSize() points side by side (for the sphere, about twice as fast per
   /// point as one call each). A guess that is not finite starts that point from the iterative

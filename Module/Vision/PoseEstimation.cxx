@@ -338,10 +338,9 @@ Mat3 RotationFromAngleAxis(const Vec3& w)
 
 // One observation's pixel residual for the pose R = exp(w) R0, t (world to camera), x = (w, t).
 // Derivatives by the chain rule: the pixel's derivative with respect to the point in the camera
-// frame by central differences through the forward projection (three directions: half the
-// projections of differencing the six pose parameters), one-sided where a step loses the point's
-// image (near the mirror's rim), so that an inlier there never stops Ceres; the point's derivative
-// with respect to the pose in closed form.
+// frame (Projector::PixelDerivative: three directions, half the projections of differencing the
+// six pose parameters; one-sided near the mirror's rim, so that an inlier there never stops
+// Ceres) times the point's derivative with respect to the pose in closed form.
 class PixelCost : public ceres::SizedCostFunction<2, 3, 3>
 {
 public:
@@ -372,10 +371,7 @@ public:
       return true;
     }
     Eigen::Matrix<double, 2, 3> dPixel; // d pixel / d p
-    for (int k = 0; k < 3; ++k)
-    {
-      dPixel.col(k) = this->Derivative(p, q.pixel, q.mirrorPoint, k);
-    }
+    this->ProjectorRef.PixelDerivative(p, q, dPixel);
     if (jacobians[1]) // d p / d t = I
     {
       Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> dt(jacobians[1]);
@@ -390,13 +386,6 @@ public:
   }
 
 private:
-  static Mat3 Skew(const Vec3& v)
-  {
-    Mat3 m;
-    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-    return m;
-  }
-
   // The left Jacobian of SO(3)'s exponential: d exp(w) = [J_l(w) dw]x exp(w).
   static Mat3 LeftJacobian(const Vec3& w)
   {
@@ -409,27 +398,6 @@ private:
     const double t2 = theta * theta;
     return Mat3::Identity() + (1.0 - std::cos(theta)) / t2 * W +
       (theta - std::sin(theta)) / (t2 * theta) * W * W;
-  }
-
-  // The pixel's derivative along the camera frame's axis k at p, each step's projection started
-  // from the reflection point at p (a step of 1e-7 of the distance moves it by far less than the
-  // Newton's tolerance needs: two or three steps).
-  Vec2 Derivative(const Vec3& p, const Vec2& pixel, const Vec3& mirrorPoint, int k) const
-  {
-    const double h = 1e-7 * std::max(1.0, p.norm());
-    Vec3 step = Vec3::Zero();
-    step[k] = h;
-    const ProjectedPoint plus = this->ProjectorRef.ProjectWorldNear(p + step, mirrorPoint);
-    const ProjectedPoint minus = this->ProjectorRef.ProjectWorldNear(p - step, mirrorPoint);
-    const bool hasPlus = HasProjection(plus.status);
-    const bool hasMinus = HasProjection(minus.status);
-    if (hasPlus && hasMinus)
-    {
-      return (plus.pixel - minus.pixel) / (2.0 * h);
-    }
-    return hasPlus ? Vec2((plus.pixel - pixel) / h)
-      : hasMinus   ? Vec2((pixel - minus.pixel) / h)
-                   : Vec2::Zero();
   }
 
   const Projector& ProjectorRef;

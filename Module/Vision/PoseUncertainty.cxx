@@ -16,9 +16,6 @@ namespace
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 constexpr double kPi = 3.14159265358979323846;
-// Steps of the central differences: radians and metres (the residuals are smooth at this scale,
-// and far above the projection's 1e-10 px noise).
-constexpr double kStep = 1e-6;
 // J^T J is taken as singular when its smallest eigenvalue is below this fraction of its largest
 // (after the columns are scaled to one pixel per unit step, radians and metres alike).
 constexpr double kSingular = 1e-14;
@@ -88,8 +85,7 @@ PoseUncertainty EstimatePoseUncertainty(const Projector& projector,
   const Vector6 zero = Vector6::Zero();
   // The point in the camera frame moves with the pose's x = (turn w, centre shift) as
   // d p / d w = R [X - c]x and d p / d shift = -R (R world to camera, at x = 0); the pixel's
-  // derivative with respect to p by central differences, each step's projection started from
-  // the reflection point.
+  // derivative with respect to p from Projector::PixelDerivative.
   const Mat3 toCamera = camera.rotation.transpose();
   for (std::size_t k = 0; k < used.size(); ++k)
   {
@@ -101,32 +97,12 @@ PoseUncertainty EstimatePoseUncertainty(const Projector& projector,
       return Unknown(floor);
     }
     squares += (at.pixel - o.pixel).squaredNorm();
-    const double h = kStep * std::max(1.0, p.norm());
     Eigen::Matrix<double, 2, 3> dPixel;
-    for (int c = 0; c < 3; ++c)
+    if (!projector.PixelDerivative(p, at, dPixel))
     {
-      Vec3 step = Vec3::Zero();
-      step[c] = h;
-      const ProjectedPoint plus = projector.ProjectWorldNear(p + step, at.mirrorPoint);
-      const ProjectedPoint minus = projector.ProjectWorldNear(p - step, at.mirrorPoint);
-      if (HasProjection(plus.status) && HasProjection(minus.status))
-      {
-        dPixel.col(c) = (plus.pixel - minus.pixel) / (2.0 * h);
-      }
-      else if (HasProjection(plus.status) || HasProjection(minus.status))
-      {
-        // One-sided at the mirror's rim.
-        dPixel.col(c) = HasProjection(plus.status) ? Vec2((plus.pixel - at.pixel) / h)
-                                                   : Vec2((at.pixel - minus.pixel) / h);
-      }
-      else
-      {
-        return Unknown(floor);
-      }
+      return Unknown(floor);
     }
-    const Vec3 d = o.world - camera.centre;
-    Mat3 cross;
-    cross << 0.0, -d.z(), d.y(), d.z(), 0.0, -d.x(), -d.y(), d.x(), 0.0;
+    const Mat3 cross = Skew(o.world - camera.centre);
     const auto row = static_cast<Eigen::Index>(2 * k);
     jacobian.block<2, 3>(row, 0) = dPixel * (toCamera * cross);
     jacobian.block<2, 3>(row, 3) = -dPixel * toCamera;
