@@ -1,5 +1,6 @@
 // RefineMarkerCorners (Markers.h): each marker's corners placed on its black square's edges, the
 // sides' curvature taken from the exact projection of the board's marker through the mirror.
+#include "MarkerGrey.h"
 #include "Markers.h"
 #include "Projector.h"
 
@@ -30,25 +31,6 @@ constexpr double kGate = 0.1;
 constexpr double kMinGate = 2.0;
 constexpr int kBowSamples = 9; // points of the projected side that give its curvature
 constexpr std::size_t kMinPoints = 6;
-
-// Bilinear grey level (pixel centres at integers); false outside the frame.
-bool Sample(const cv::Mat& grey, const Vec2& p, double& value)
-{
-  const double x = p.x();
-  const double y = p.y();
-  if (!(x >= 0.0 && y >= 0.0 && x < grey.cols - 1.0 && y < grey.rows - 1.0))
-  {
-    return false;
-  }
-  const int x0 = static_cast<int>(x);
-  const int y0 = static_cast<int>(y);
-  const double fx = x - x0;
-  const double fy = y - y0;
-  const auto at = [&](int u, int v) { return static_cast<double>(grey.at<std::uint8_t>(v, u)); };
-  value = (1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
-    fy * ((1.0 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
-  return true;
-}
 
 // A side of the square in the image: from `start` along the unit chord direction u for `length`
 // pixels, offset along the unit outward normal n by b(t) = c0 + c1 t + c2 t^2 + c3 t^3 at t pixels
@@ -131,10 +113,12 @@ bool EdgeOffset(const cv::Mat& grey, const Vec2& foot, const Vec2& n, double rea
   std::vector<double> profile(static_cast<std::size_t>(samples));
   for (int k = 0; k < samples; ++k)
   {
-    if (!Sample(grey, foot + (k * kStep - reach) * n, profile[static_cast<std::size_t>(k)]))
+    const double g = detail::GreyAt(grey, foot + (k * kStep - reach) * n);
+    if (g < 0.0)
     {
       return false;
     }
+    profile[static_cast<std::size_t>(k)] = g;
   }
   const auto at = [&](int k) { return profile[static_cast<std::size_t>(k)]; };
   const double dark = (at(0) + at(1) + at(2)) / 3.0;
@@ -288,17 +272,16 @@ bool Meet(const Side& first, const Side& second, Vec2& corner)
 }
 } // namespace
 
-int RefineMarkerCorners(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
-  const MarkerBoard& board, std::vector<MarkerDetection>& detections)
+namespace detail
 {
-  if (!rgba || width <= 1 || height <= 1 || detections.empty())
+int RefineMarkerCorners(const cv::Mat& grey, const CameraModel& camera, const MarkerBoard& board,
+  std::vector<MarkerDetection>& detections)
+{
+  if (grey.cols <= 1 || grey.rows <= 1 || detections.empty())
   {
     return 0;
   }
   const Projector projector(camera);
-  const cv::Mat frame(height, width, CV_8UC4, const_cast<std::uint8_t*>(rgba));
-  cv::Mat grey;
-  cv::cvtColor(frame, grey, cv::COLOR_RGBA2GRAY);
   int moved = 0;
   for (MarkerDetection& d : detections)
   {
@@ -347,5 +330,17 @@ int RefineMarkerCorners(int width, int height, const std::uint8_t* rgba, const C
     d.corners = corners;
   }
   return moved;
+}
+} // namespace detail
+
+int RefineMarkerCorners(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
+  const MarkerBoard& board, std::vector<MarkerDetection>& detections)
+{
+  if (!rgba || width <= 1 || height <= 1 || detections.empty())
+  {
+    return 0;
+  }
+  return detail::RefineMarkerCorners(
+    detail::GreyOf(width, height, rgba), camera, board, detections);
 }
 } // namespace catar

@@ -1,5 +1,7 @@
 #include "MarkerPoseTracker.h"
 
+#include "MarkerGrey.h"
+
 #include <Eigen/Geometry>
 
 #include <array>
@@ -95,11 +97,12 @@ const FramePose& MarkerPoseTracker::Track(
       posed.worldToCamera = (f.result.ok && (f.result.reliable || !this->HaveReliable))
         ? f.result.worldToCamera
         : this->Anchor.worldToCamera;
+      const cv::Mat grey = detail::GreyOf(width, height, rgba);
       f.markersRecovered =
-        RecoverMarkers(width, height, rgba, posed, this->BoardLayout, candidates, found);
+        detail::RecoverMarkers(grey, posed, this->BoardLayout, candidates, found);
       // The corners on the markers' edges, the sides bent as the pose projects them; the pose
       // again from them.
-      if (RefineMarkerCorners(width, height, rgba, posed, this->BoardLayout, found) > 0 ||
+      if (detail::RefineMarkerCorners(grey, posed, this->BoardLayout, found) > 0 ||
         f.markersRecovered > 0)
       {
         f.result = PoseFromMarkers(camera, this->BoardLayout, found, this->BoardLayout.pose);

@@ -1,4 +1,5 @@
 // RecoverMarkers (Markers.h): the board's undecoded markers read again where a pose puts them.
+#include "MarkerGrey.h"
 #include "Markers.h"
 #include "Projector.h"
 
@@ -19,27 +20,6 @@ namespace
 // Markers whose predicted image is smaller than this on its shorter side (pixels) are not
 // looked for: too few pixels a cell to read their bits.
 constexpr double kMinSearchSide = 10.0;
-
-// The grey level of a frame at a pixel (bilinear; pixel centres at integers, as OpenCV's); -1
-// outside the frame.
-double Grey(const cv::Mat& grey, const Vec2& p)
-{
-  const double x = p.x();
-  const double y = p.y();
-  if (!(x >= 0.0 && y >= 0.0 && x <= grey.cols - 1.0 && y <= grey.rows - 1.0))
-  {
-    return -1.0;
-  }
-  const int x0 = std::min(static_cast<int>(x), std::max(0, grey.cols - 2));
-  const int y0 = std::min(static_cast<int>(y), std::max(0, grey.rows - 2));
-  const int x1 = std::min(x0 + 1, grey.cols - 1);
-  const int y1 = std::min(y0 + 1, grey.rows - 1);
-  const double fx = x - x0;
-  const double fy = y - y0;
-  const auto at = [&](int u, int v) { return static_cast<double>(grey.at<std::uint8_t>(v, u)); };
-  return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) +
-    fy * ((1 - fx) * at(x0, y1) + fx * at(x1, y1));
-}
 
 // The candidate's corners in the order (and direction) closest to `predicted`; the largest
 // distance of a corner from its predicted place.
@@ -82,7 +62,7 @@ bool ReadsAs(const cv::Mat& grey, const Projector& projector, const BoardMarker&
       const double v = (r + 0.5) / cells;
       const Vec3 world = w[0] + u * (w[1] - w[0]) + v * (w[3] - w[0]);
       const ProjectedPoint p = projector.ProjectWorld(world);
-      const double g = p.status == ProjectionStatus::Valid ? Grey(grey, p.pixel) : -1.0;
+      const double g = p.status == ProjectionStatus::Valid ? detail::GreyAt(grey, p.pixel) : -1.0;
       if (g < 0.0)
       {
         return false;
@@ -179,19 +159,44 @@ void SearchAround(const cv::Mat& grey, const std::array<Vec2, 4>& predicted,
 }
 } // namespace
 
-int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
-  const MarkerBoard& board, const std::vector<std::array<Vec2, 4>>& candidates,
-  std::vector<MarkerDetection>& detections)
+namespace detail
+{
+cv::Mat GreyOf(int width, int height, const std::uint8_t* rgba)
+{
+  const cv::Mat frame(height, width, CV_8UC4, const_cast<std::uint8_t*>(rgba));
+  cv::Mat grey;
+  cv::cvtColor(frame, grey, cv::COLOR_RGBA2GRAY);
+  return grey;
+}
+
+double GreyAt(const cv::Mat& grey, const Vec2& p)
+{
+  const double x = p.x();
+  const double y = p.y();
+  if (!(x >= 0.0 && y >= 0.0 && x <= grey.cols - 1.0 && y <= grey.rows - 1.0))
+  {
+    return -1.0;
+  }
+  const int x0 = std::min(static_cast<int>(x), std::max(0, grey.cols - 2));
+  const int y0 = std::min(static_cast<int>(y), std::max(0, grey.rows - 2));
+  const int x1 = std::min(x0 + 1, grey.cols - 1);
+  const int y1 = std::min(y0 + 1, grey.rows - 1);
+  const double fx = x - x0;
+  const double fy = y - y0;
+  const auto at = [&](int u, int v) { return static_cast<double>(grey.at<std::uint8_t>(v, u)); };
+  return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) +
+    fy * ((1 - fx) * at(x0, y1) + fx * at(x1, y1));
+}
+
+int RecoverMarkers(const cv::Mat& grey, const CameraModel& camera, const MarkerBoard& board,
+  const std::vector<std::array<Vec2, 4>>& candidates, std::vector<MarkerDetection>& detections)
 {
   const int cells = MarkerCells(board.dictionary);
-  if (cells <= 0 || !rgba || width <= 1 || height <= 1)
+  if (cells <= 0 || grey.cols <= 1 || grey.rows <= 1)
   {
     return 0;
   }
   const Projector projector(camera);
-  const cv::Mat frame(height, width, CV_8UC4, const_cast<std::uint8_t*>(rgba));
-  cv::Mat grey;
-  cv::cvtColor(frame, grey, cv::COLOR_RGBA2GRAY);
   std::vector<bool> used(candidates.size(), false);
   int added = 0;
   for (const BoardMarker& marker : board.markers)
@@ -304,5 +309,18 @@ int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const Camera
     ++added;
   }
   return added;
+}
+} // namespace detail
+
+int RecoverMarkers(int width, int height, const std::uint8_t* rgba, const CameraModel& camera,
+  const MarkerBoard& board, const std::vector<std::array<Vec2, 4>>& candidates,
+  std::vector<MarkerDetection>& detections)
+{
+  if (!rgba || width <= 1 || height <= 1)
+  {
+    return 0;
+  }
+  return detail::RecoverMarkers(
+    detail::GreyOf(width, height, rgba), camera, board, candidates, detections);
 }
 } // namespace catar
