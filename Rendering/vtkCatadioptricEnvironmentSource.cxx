@@ -75,13 +75,7 @@ struct vtkCatadioptricEnvironmentSource::FrameCache
 
   static bool SameCamera(const catar::CameraModel& a, const catar::CameraModel& b)
   {
-    const catar::Intrinsics& i = a.intrinsics;
-    const catar::Intrinsics& j = b.intrinsics;
-    const catar::Distortion& d = a.distortion;
-    const catar::Distortion& e = b.distortion;
-    return i.fx == j.fx && i.fy == j.fy && i.cx == j.cx && i.cy == j.cy && i.skew == j.skew &&
-      i.width == j.width && i.height == j.height && d.k1 == e.k1 && d.k2 == e.k2 && d.p1 == e.p1 &&
-      d.p2 == e.p2 && d.k3 == e.k3 && a.mirror == b.mirror && a.worldToCamera == b.worldToCamera;
+    return a.SameLens(b) && a.mirror == b.mirror && a.worldToCamera == b.worldToCamera;
   }
 
   // Whether `output` still holds the frame made from `camera` and `parameters`.

@@ -82,6 +82,47 @@ void vtkCatadioptricCamera::SetDistortion(double k1, double k2, double p1, doubl
   }
 }
 
+bool vtkCatadioptricCamera::SetLens(const char* lens, const std::vector<double>& coefficients)
+{
+  catar::LensType type = catar::LensType::Pinhole;
+  catar::Distortion d;
+  if (!lens || !catar::LensFromName(lens, type))
+  {
+    this->LastError =
+      std::string("unknown lens model '") + (lens ? lens : "(null)") + "' (pinhole or fisheye)";
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+  if (!d.SetCoefficients(type, coefficients))
+  {
+    this->LastError = type == catar::LensType::Fisheye
+      ? "a fisheye lens takes 4 coefficients (k1 k2 k3 k4)"
+      : "a pinhole lens takes 4, 5, 8, 12 or 14 coefficients (OpenCV's order)";
+    vtkErrorMacro(<< this->LastError);
+    return false;
+  }
+  if (static_cast<int>(type) != this->Lens ||
+    !std::equal(d.Data(), d.Data() + d.kCount, this->Distortion))
+  {
+    this->Lens = static_cast<int>(type);
+    std::copy(d.Data(), d.Data() + d.kCount, this->Distortion);
+    this->Modified();
+  }
+  return true;
+}
+
+const char* vtkCatadioptricCamera::GetLens()
+{
+  return catar::LensName(static_cast<catar::LensType>(this->Lens));
+}
+
+std::vector<double> vtkCatadioptricCamera::GetDistortionCoefficients()
+{
+  catar::Distortion d;
+  std::copy(this->Distortion, this->Distortion + d.kCount, d.Data());
+  return d.Coefficients(static_cast<catar::LensType>(this->Lens));
+}
+
 vtkInformationIntegerVectorKey* vtkCatadioptricCamera::IMAGE_SIZE()
 {
   return theImageSizeKey;
@@ -91,6 +132,7 @@ namespace
 {
 const char* const kIntrinsicsName = "CameraIntrinsics";
 const char* const kDistortionName = "CameraDistortion";
+const char* const kLensName = "CameraLens";
 const char* const kMirrorTypeName = "MirrorType";
 const char* const kMirrorParametersName = "MirrorParameters";
 const char* const kPoseName = "WorldToCamera";
@@ -318,8 +360,8 @@ catar::CameraModel vtkCatadioptricCamera::GetModel()
   m.intrinsics.skew = this->Skew;
   m.intrinsics.width = this->ImageWidth;
   m.intrinsics.height = this->ImageHeight;
-  m.distortion = catar::Distortion{ this->Distortion[0], this->Distortion[1], this->Distortion[2],
-    this->Distortion[3], this->Distortion[4] };
+  m.lens = static_cast<catar::LensType>(this->Lens);
+  std::copy(this->Distortion, this->Distortion + m.distortion.kCount, m.distortion.Data());
   m.mirror = catar::MirrorDescription(this->MirrorType, this->MirrorParameters);
   for (int r = 0; r < 4; ++r)
   {
@@ -340,9 +382,8 @@ void vtkCatadioptricCamera::SetModel(const catar::CameraModel& m)
   this->Skew = m.intrinsics.skew;
   this->ImageWidth = m.intrinsics.width;
   this->ImageHeight = m.intrinsics.height;
-  const catar::Distortion& d = m.distortion;
-  const double dist[5] = { d.k1, d.k2, d.p1, d.p2, d.k3 };
-  std::copy(dist, dist + 5, this->Distortion);
+  this->Lens = static_cast<int>(m.lens);
+  std::copy(m.distortion.Data(), m.distortion.Data() + m.distortion.kCount, this->Distortion);
   this->MirrorType = m.mirror.type;
   this->MirrorParameters = m.mirror.parameters;
   for (int r = 0; r < 4; ++r)
@@ -575,7 +616,12 @@ void vtkCatadioptricCamera::WriteToFieldData(vtkFieldData* fd)
     this->PrincipalPoint[1], this->Skew, static_cast<double>(this->ImageWidth),
     static_cast<double>(this->ImageHeight) };
   AddArray(fd, kIntrinsicsName, intr, 7);
-  AddArray(fd, kDistortionName, this->Distortion, 5);
+  AddArray(fd, kDistortionName, this->Distortion, catar::Distortion::kCount);
+  vtkNew<vtkStringArray> lens;
+  lens->SetName(kLensName);
+  lens->InsertNextValue(catar::LensName(static_cast<catar::LensType>(this->Lens)));
+  fd->RemoveArray(kLensName);
+  fd->AddArray(lens);
   vtkNew<vtkStringArray> type;
   type->SetName(kMirrorTypeName);
   type->InsertNextValue(this->MirrorType);
@@ -590,7 +636,21 @@ void vtkCatadioptricCamera::WriteToFieldData(vtkFieldData* fd)
 
 bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
 {
-  double intr[7], dist[5], pose[16];
+  double intr[7], pose[16];
+  double dist[catar::Distortion::kCount] = {};
+  vtkDataArray* distArray =
+    fd ? vtkDataArray::SafeDownCast(fd->GetAbstractArray(kDistortionName)) : nullptr;
+  const int distCount =
+    distArray && distArray->GetNumberOfValues() == 5 ? 5 : catar::Distortion::kCount;
+  vtkStringArray* lensArray =
+    fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(kLensName)) : nullptr;
+  catar::LensType lens = catar::LensType::Pinhole;
+  if (lensArray &&
+    (lensArray->GetNumberOfValues() != 1 || !catar::LensFromName(lensArray->GetValue(0), lens)))
+  {
+    this->LastError = "field data holds an unknown lens model";
+    return false;
+  }
   vtkStringArray* typeArray =
     fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(kMirrorTypeName)) : nullptr;
   vtkDataArray* parameterArray =
@@ -600,8 +660,8 @@ bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
         typeArray->GetValue(0), static_cast<std::size_t>(parameterArray->GetNumberOfValues()))
     : nullptr;
   std::vector<double> mirror(type ? static_cast<std::size_t>(type->ParameterCount()) : 0);
-  if (!GetArray(fd, kIntrinsicsName, intr, 7) || !GetArray(fd, kDistortionName, dist, 5) || !type ||
-    !GetArray(fd, kMirrorParametersName, mirror.data(), static_cast<int>(mirror.size())) ||
+  if (!GetArray(fd, kIntrinsicsName, intr, 7) || !GetArray(fd, kDistortionName, dist, distCount) ||
+    !type || !GetArray(fd, kMirrorParametersName, mirror.data(), static_cast<int>(mirror.size())) ||
     !GetArray(fd, kPoseName, pose, 16))
   {
     this->LastError = "field data holds no camera (run vtkCatadioptricProjection first)";
@@ -620,7 +680,8 @@ bool vtkCatadioptricCamera::ReadFromFieldData(vtkFieldData* fd)
   this->Skew = intr[4];
   this->ImageWidth = static_cast<int>(intr[5]);
   this->ImageHeight = static_cast<int>(intr[6]);
-  std::copy(dist, dist + 5, this->Distortion);
+  this->Lens = static_cast<int>(lens);
+  std::copy(dist, dist + catar::Distortion::kCount, this->Distortion);
   this->MirrorType = type->name;
   this->MirrorParameters = mirror;
   this->WorldToCamera->DeepCopy(pose);
@@ -644,6 +705,7 @@ void vtkCatadioptricCamera::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PrincipalPoint: " << this->PrincipalPoint[0] << ", " << this->PrincipalPoint[1]
      << "\n";
   os << indent << "Skew: " << this->Skew << "\n";
+  os << indent << "Lens: " << catar::LensName(static_cast<catar::LensType>(this->Lens)) << "\n";
   os << indent << "Distortion:";
   for (double d : this->Distortion)
   {

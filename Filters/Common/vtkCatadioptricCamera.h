@@ -3,10 +3,10 @@
  * @brief   a non-central catadioptric camera: a perspective camera looking at a curved mirror
  *
  * The camera holds the pinhole intrinsics (focal lengths, principal point, skew, image size),
- * OpenCV's lens distortion (k1, k2, p1, p2, k3), the mirror (a type and its parameters, in the
- * camera frame; see GetMirrorTypes()) and the world-to-camera pose. Conventions follow OpenCV:
- * camera frame x right, y down, z forward; pixel (0,0) is the centre of the top-left pixel. Lengths
- * are in any one unit.
+ * the lens model and its distortion (OpenCV's pinhole or fisheye), the mirror (a type and its
+ * parameters, in the camera frame; see GetMirrorTypes()) and the world-to-camera pose. Conventions
+ * follow OpenCV: camera frame x right, y down, z forward; pixel (0,0) is the centre of the top-left
+ * pixel. Lengths are in any one unit.
  *
  * It loads and saves calibration files (YAML or JSON, see Documentation/opencv-calibration.md),
  * projects world points through the mirror, back-projects pixels to reflected rays, and writes
@@ -97,6 +97,17 @@ public:
   ///@}
 
   ///@{
+  /// The lens model and all its coefficients, as calibration files give them
+  /// (Documentation/opencv-calibration.md): "pinhole" with OpenCV's 4, 5, 8, 12 or 14 numbers
+  /// (k1 k2 p1 p2 [k3 [k4 k5 k6 [s1 s2 s3 s4 [tauX tauY]]]]), or "fisheye" with k1 k2 k3 k4
+  /// (cv::fisheye). SetLens returns false (GetLastError says why; nothing changes) for an unknown
+  /// model or a wrong count. SetDistortion sets the first five of a pinhole's.
+  bool SetLens(const char* lens, const std::vector<double>& coefficients);
+  const char* GetLens();
+  std::vector<double> GetDistortionCoefficients();
+  ///@}
+
+  ///@{
   /// The mirror's type: one of GetMirrorTypes() (the first is the default). Setting another type
   /// resets the parameters to that type's defaults; an unknown type is an error (vtkErrorMacro,
   /// GetLastError, false) and changes nothing.
@@ -183,7 +194,8 @@ public:
 
   ///@{
   /// Store the camera in / restore it from field data (arrays CameraIntrinsics,
-  /// CameraDistortion, MirrorType (a string), MirrorParameters, WorldToCamera). ReadFromFieldData
+  /// CameraDistortion (14 numbers; 5 are read too), CameraLens (a string; pinhole when absent),
+  /// MirrorType (a string), MirrorParameters, WorldToCamera). ReadFromFieldData
   /// returns false if any is missing or malformed.
   void WriteToFieldData(vtkFieldData* fieldData);
   bool ReadFromFieldData(vtkFieldData* fieldData);
@@ -212,7 +224,8 @@ protected:
   double FocalLength[2] = { 1000.0, 1000.0 };
   double PrincipalPoint[2] = { 663.5, 523.5 };
   double Skew = 0.0;
-  double Distortion[5] = { 0, 0, 0, 0, 0 };
+  int Lens = 0;                         // catar::LensType
+  double Distortion[14] = {};           // OpenCV's order (catar::Distortion)
   std::string MirrorType;               // set by the constructor: the demo rig's mirror
   std::vector<double> MirrorParameters; // its numbers
   vtkSmartPointer<vtkMatrix4x4> WorldToCamera;

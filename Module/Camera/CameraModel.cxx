@@ -2,7 +2,12 @@
 
 #include "Mirror.h"
 
+#include "LensModels.h"
+
 #include <Eigen/Dense>
+#include <unsupported/Eigen/AutoDiff>
+
+#include <algorithm>
 
 #include <cmath>
 #include <sstream>
@@ -33,9 +38,24 @@ std::string CameraModel::Validate() const
     err << "image size " << in.width << "x" << in.height << " is over the limit (at most "
         << kMaxImageSide << " pixels a side and " << kMaxImagePixels << " pixels)";
   }
-  else if (!(finite(d.k1) && finite(d.k2) && finite(d.p1) && finite(d.p2) && finite(d.k3)))
+  else if (!std::all_of(d.Data(), d.Data() + Distortion::kCount, finite))
   {
     err << "distortion coefficients contain NaN or Inf";
+  }
+  else if (this->lens != LensType::Pinhole && this->lens != LensType::Fisheye)
+  {
+    err << "unknown lens type " << static_cast<int>(this->lens);
+  }
+  else if (this->lens == LensType::Fisheye &&
+    (d.p1 != 0.0 || d.p2 != 0.0 ||
+      std::any_of(d.Data() + 6, d.Data() + Distortion::kCount, [](double v) { return v != 0.0; })))
+  {
+    err << "a fisheye lens has the coefficients k1 k2 k3 k4 only";
+  }
+  else if (!(std::abs(d.tauX) < 0.5 * M_PI && std::abs(d.tauY) < 0.5 * M_PI))
+  {
+    err << "the sensor's tilt (tauX, tauY) must be within +-90 degrees (radians: " << d.tauX << ", "
+        << d.tauY << ")";
   }
   else if (const std::string mirrorError = ValidateMirror(this->mirror); !mirrorError.empty())
   {
@@ -71,71 +91,279 @@ Mat3 CameraModel::K() const
   return k;
 }
 
+const char* LensName(LensType lens)
+{
+  return lens == LensType::Fisheye ? "fisheye" : "pinhole";
+}
+
+bool LensFromName(const std::string& name, LensType& lens)
+{
+  if (name == "pinhole")
+  {
+    lens = LensType::Pinhole;
+    return true;
+  }
+  if (name == "fisheye")
+  {
+    lens = LensType::Fisheye;
+    return true;
+  }
+  return false;
+}
+
+bool Distortion::IsZero() const
+{
+  return std::all_of(this->Data(), this->Data() + kCount, [](double v) { return v == 0.0; });
+}
+
+bool Distortion::operator==(const Distortion& other) const
+{
+  return std::equal(this->Data(), this->Data() + kCount, other.Data());
+}
+
+std::vector<double> Distortion::Coefficients(LensType lens) const
+{
+  if (lens == LensType::Fisheye)
+  {
+    return { this->k1, this->k2, this->k3, this->k4 };
+  }
+  // The shortest of OpenCV's lengths that holds the last non-zero number.
+  std::size_t last = kCount;
+  while (last > 0 && this->Data()[last - 1] == 0.0)
+  {
+    --last;
+  }
+  const std::size_t n = last <= 5 ? 5 : last <= 8 ? 8 : last <= 12 ? 12 : 14;
+  return std::vector<double>(this->Data(), this->Data() + n);
+}
+
+bool Distortion::SetCoefficients(LensType lens, const std::vector<double>& c)
+{
+  Distortion d;
+  if (lens == LensType::Fisheye)
+  {
+    if (c.size() != 4)
+    {
+      return false;
+    }
+    d.k1 = c[0];
+    d.k2 = c[1];
+    d.k3 = c[2];
+    d.k4 = c[3];
+  }
+  else
+  {
+    const std::size_t n = c.size();
+    if (n != 4 && n != 5 && n != 8 && n != 12 && n != 14)
+    {
+      return false;
+    }
+    std::copy(c.begin(), c.end(), d.Data());
+  }
+  *this = d;
+  return true;
+}
+
 Vec2 Distort(const Distortion& d, const Vec2& xy)
 {
-  const double x = xy.x();
-  const double y = xy.y();
-  const double r2 = x * x + y * y;
-  const double radial = 1.0 + r2 * (d.k1 + r2 * (d.k2 + r2 * d.k3));
-  const double xd = x * radial + 2.0 * d.p1 * x * y + d.p2 * (r2 + 2.0 * x * x);
-  const double yd = y * radial + d.p1 * (r2 + 2.0 * y * y) + 2.0 * d.p2 * x * y;
-  return Vec2(xd, yd);
+  Vec2 out;
+  lens::PinholeDistort(d.Data(), d.Tilted(), xy.x(), xy.y(), out.x(), out.y());
+  return out;
 }
 
 Vec2 CameraModel::DirectionToPixel(const Vec3& direction) const
 {
-  const Vec2 xy(direction.x() / direction.z(), direction.y() / direction.z());
-  const Vec2 xd = this->distortion.IsZero() ? xy : Distort(this->distortion, xy);
+  Vec2 xd;
+  if (this->lens == LensType::Fisheye)
+  {
+    const double k[4] = { distortion.k1, distortion.k2, distortion.k3, distortion.k4 };
+    lens::FisheyeDistort(k, direction.x(), direction.y(), direction.z(), xd.x(), xd.y());
+  }
+  else
+  {
+    const Vec2 xy(direction.x() / direction.z(), direction.y() / direction.z());
+    xd = this->distortion.IsZero() ? xy : Distort(this->distortion, xy);
+  }
   return Vec2(intrinsics.fx * xd.x() + intrinsics.skew * xd.y() + intrinsics.cx,
     intrinsics.fy * xd.y() + intrinsics.cy);
 }
 
-bool CameraModel::PixelToNormalized(const Vec2& pixel, Vec2& normalized) const
+bool CameraModel::Sees(const Vec3& d) const
 {
-  // Invert K (upper triangular).
-  const double yd = (pixel.y() - intrinsics.cy) / intrinsics.fy;
-  const double xd = (pixel.x() - intrinsics.cx - intrinsics.skew * yd) / intrinsics.fx;
-  const Vec2 target(xd, yd);
-  if (this->distortion.IsZero())
+  if (!d.allFinite())
   {
-    normalized = target;
-    return target.allFinite();
+    return false;
   }
-  const Distortion& d = this->distortion;
-  // Newton on Distort(x) = target, starting from the target itself.
-  Vec2 x = target;
-  for (int it = 0; it < 50; ++it)
+  if (this->lens == LensType::Fisheye)
   {
-    const double u = x.x();
-    const double v = x.y();
-    const double r2 = u * u + v * v;
-    const double radial = 1.0 + r2 * (d.k1 + r2 * (d.k2 + r2 * d.k3));
-    const double dradial = d.k1 + r2 * (2.0 * d.k2 + 3.0 * r2 * d.k3); // d radial / d r2
-    const Vec2 f = Distort(d, x) - target;
-    Eigen::Matrix2d J;
-    J(0, 0) = radial + u * dradial * 2.0 * u + 2.0 * d.p1 * v + d.p2 * 6.0 * u;
-    J(0, 1) = u * dradial * 2.0 * v + 2.0 * d.p1 * u + d.p2 * 2.0 * v;
-    J(1, 0) = v * dradial * 2.0 * u + d.p1 * 2.0 * u + 2.0 * d.p2 * v;
-    J(1, 1) = radial + v * dradial * 2.0 * v + d.p1 * 6.0 * v + 2.0 * d.p2 * u;
+    return d.z() > 0.0 || d.x() * d.x() + d.y() * d.y() > 1e-24 * d.squaredNorm();
+  }
+  return d.z() > 0.0 && d.z() * d.z() > 1e-24 * d.squaredNorm();
+}
+
+namespace
+{
+// Newton on the pinhole distortion: the undistorted (x, y) whose distortion is target, from the
+// target itself, each step halved until the residual falls (strong or tilted lenses). Derivatives
+// by forward-mode automatic differentiation of the one formula (LensModels.h).
+bool UndistortPinhole(const Distortion& d, const Vec2& target, Vec2& x)
+{
+  using AD = Eigen::AutoDiffScalar<Eigen::Vector2d>;
+  AD k[Distortion::kCount];
+  for (int i = 0; i < Distortion::kCount; ++i)
+  {
+    k[i] = AD(d.Data()[i], Eigen::Vector2d::Zero());
+  }
+  const bool tilted = d.Tilted();
+  auto residual = [&](const Vec2& at, Eigen::Matrix2d* J) {
+    const AD u(at.x(), 2, 0);
+    const AD v(at.y(), 2, 1);
+    AD xd, yd;
+    lens::PinholeDistort(k, tilted, u, v, xd, yd);
+    if (J)
+    {
+      J->row(0) = xd.derivatives().transpose();
+      J->row(1) = yd.derivatives().transpose();
+    }
+    return Vec2(xd.value() - target.x(), yd.value() - target.y());
+  };
+  x = target;
+  Eigen::Matrix2d J;
+  Vec2 f = residual(x, &J);
+  const double converged = 1e-15 * (1.0 + target.norm());
+  for (int it = 0; it < 60 && f.allFinite() && f.norm() > converged; ++it)
+  {
     const double det = J.determinant();
     if (!std::isfinite(det) || std::abs(det) < 1e-14)
     {
       return false;
     }
     const Vec2 step = J.inverse() * f;
-    x -= step;
-    if (!x.allFinite())
+    double fraction = 1.0;
+    Vec2 next = x - step;
+    Eigen::Matrix2d Jn;
+    Vec2 fn = residual(next, &Jn);
+    for (int half = 0; half < 30 && !(fn.allFinite() && fn.norm() < f.norm()); ++half)
+    {
+      fraction *= 0.5;
+      next = x - fraction * step;
+      fn = residual(next, &Jn);
+    }
+    if (!(fn.allFinite() && fn.norm() < f.norm()))
+    {
+      break; // at rounding: no step lowers the residual
+    }
+    x = next;
+    f = fn;
+    J = Jn;
+  }
+  return x.allFinite() && f.norm() <= 1e-12 * (1.0 + target.norm());
+}
+
+// The fisheye's theta of theta_d: Newton from theta_d, each step halved until the residual falls.
+bool FisheyeTheta(const Distortion& d, double thetaD, double& theta)
+{
+  const double k[4] = { d.k1, d.k2, d.k3, d.k4 };
+  auto f = [&](double t) { return lens::FisheyeThetaD(k, t) - thetaD; };
+  theta = std::min(thetaD, 3.0);
+  double value = f(theta);
+  const double converged = 1e-15 * (1.0 + thetaD);
+  for (int it = 0; it < 60 && std::isfinite(value) && std::abs(value) > converged; ++it)
+  {
+    const double t2 = theta * theta;
+    const double slope =
+      1.0 + t2 * (3.0 * k[0] + t2 * (5.0 * k[1] + t2 * (7.0 * k[2] + t2 * 9.0 * k[3])));
+    if (!(std::abs(slope) > 1e-14))
     {
       return false;
     }
-    if (step.norm() <= 1e-16 * (1.0 + x.norm()))
+    const double step = value / slope;
+    double fraction = 1.0;
+    double next = theta - step;
+    double nextValue = f(next);
+    auto better = [&](double t, double v) {
+      return std::isfinite(v) && std::abs(v) < std::abs(value) && t >= 0.0;
+    };
+    for (int half = 0; half < 30 && !better(next, nextValue); ++half)
     {
-      break;
+      fraction *= 0.5;
+      next = theta - fraction * step;
+      nextValue = f(next);
     }
+    if (!better(next, nextValue))
+    {
+      break; // at rounding
+    }
+    theta = next;
+    value = nextValue;
   }
-  normalized = x;
-  // Accept only a true inverse.
-  return (Distort(d, x) - target).norm() <= 1e-12 * (1.0 + target.norm());
+  return std::isfinite(theta) && theta >= 0.0 && theta < M_PI &&
+    std::abs(value) <= 1e-12 * (1.0 + thetaD);
+}
+} // namespace
+
+bool CameraModel::PixelToDirection(const Vec2& pixel, Vec3& direction) const
+{
+  // Invert K (upper triangular).
+  const double yd = (pixel.y() - intrinsics.cy) / intrinsics.fy;
+  const double xd = (pixel.x() - intrinsics.cx - intrinsics.skew * yd) / intrinsics.fx;
+  const Vec2 target(xd, yd);
+  if (!target.allFinite())
+  {
+    return false;
+  }
+  if (this->lens == LensType::Fisheye)
+  {
+    const double thetaD = target.norm();
+    if (thetaD == 0.0)
+    {
+      direction = Vec3(0.0, 0.0, 1.0);
+      return true;
+    }
+    double theta = 0.0;
+    if (!FisheyeTheta(this->distortion, thetaD, theta))
+    {
+      return false;
+    }
+    const double s = std::sin(theta) / thetaD;
+    direction = Vec3(s * xd, s * yd, std::cos(theta));
+    return true;
+  }
+  Vec2 x = target;
+  if (!this->distortion.IsZero() && !UndistortPinhole(this->distortion, target, x))
+  {
+    return false;
+  }
+  direction = Vec3(x.x(), x.y(), 1.0).normalized();
+  return direction.allFinite();
+}
+
+bool CameraModel::PixelToNormalized(const Vec2& pixel, Vec2& normalized) const
+{
+  if (this->lens == LensType::Pinhole)
+  {
+    // x/z directly, not through the unit direction: exact for the common case.
+    const double yd = (pixel.y() - intrinsics.cy) / intrinsics.fy;
+    const double xd = (pixel.x() - intrinsics.cx - intrinsics.skew * yd) / intrinsics.fx;
+    const Vec2 target(xd, yd);
+    if (!target.allFinite())
+    {
+      return false;
+    }
+    if (this->distortion.IsZero())
+    {
+      normalized = target;
+      return true;
+    }
+    return UndistortPinhole(this->distortion, target, normalized);
+  }
+  Vec3 d;
+  if (!this->PixelToDirection(pixel, d) || !(d.z() > 0.0))
+  {
+    return false;
+  }
+  normalized = Vec2(d.x() / d.z(), d.y() / d.z());
+  return normalized.allFinite();
 }
 
 bool CameraModel::InImage(const Vec2& pixel) const

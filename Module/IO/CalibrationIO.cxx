@@ -132,19 +132,14 @@ void ReadCalibration(const Node& node, CameraModel& m, bool mirrorRequired)
     throw ParseError("the calibration must be a map of keys");
   }
   CheckKeys(node,
-    { "image_width", "image_height", "camera_matrix", "distortion_model", "distortion_coefficients",
-      "mirror", "world_to_camera",
+    { "image_width", "image_height", "camera_matrix", "lens", "distortion_model",
+      "distortion_coefficients", "mirror", "world_to_camera",
       // Read past: the rest of a ROS camera_info file ...
       "camera_name", "rectification_matrix", "projection_matrix",
       // ... and of the files OpenCV's calibration samples write.
       "calibration_time", "nframes", "nr_of_frames", "board_width", "board_height", "square_size",
       "aspectRatio", "fix_aspect_ratio", "flags", "fisheye_model", "avg_reprojection_error",
       "per_view_reprojection_errors", "extrinsic_parameters", "image_points", "grid_points" });
-  if (Flag(node, "fisheye_model", false))
-  {
-    throw ParseError("'fisheye_model': OpenCV's fisheye lens model is not supported (the lens is "
-                     "the pinhole with k1 k2 p1 p2 k3)");
-  }
   CameraModel model;
   const double w = Number(node, "image_width");
   const double h = Number(node, "image_height");
@@ -170,23 +165,54 @@ void ReadCalibration(const Node& node, CameraModel& m, bool mirrorRequired)
   model.intrinsics.cx = K[2];
   model.intrinsics.fy = K[4];
   model.intrinsics.cy = K[5];
-  // ROS camera_info names its model: plumb_bob (OpenCV's k1 k2 p1 p2 k3) is the one read.
-  const std::string distortionModel = String(node, "distortion_model", "plumb_bob");
-  if (distortionModel != "plumb_bob")
+  // The lens: `lens: pinhole | fisheye`, or ROS camera_info's distortion_model (plumb_bob and
+  // rational_polynomial: OpenCV's pinhole; equidistant: the fisheye), or the flag fisheye_model of
+  // OpenCV's calibration sample.
+  LensType lens = Flag(node, "fisheye_model", false) ? LensType::Fisheye : LensType::Pinhole;
+  const std::string lensName = String(node, "lens", "");
+  if (!lensName.empty())
   {
-    throw ParseError(
-      "'distortion_model' " + distortionModel + " is not supported (plumb_bob: k1 k2 p1 p2 k3)");
+    const LensType flagged = lens;
+    if (!LensFromName(lensName, lens))
+    {
+      throw ParseError("'lens' " + lensName + " is not a lens model (pinhole or fisheye)");
+    }
+    if (flagged == LensType::Fisheye && lens != flagged)
+    {
+      throw ParseError("'fisheye_model' contradicts 'lens' " + lensName);
+    }
   }
+  const std::string distortionModel = String(node, "distortion_model", "");
+  if (!distortionModel.empty())
+  {
+    const LensType named = distortionModel == "equidistant" ? LensType::Fisheye : LensType::Pinhole;
+    if (distortionModel != "plumb_bob" && distortionModel != "rational_polynomial" &&
+      distortionModel != "equidistant")
+    {
+      throw ParseError("'distortion_model' " + distortionModel +
+        " is not supported (plumb_bob, rational_polynomial: OpenCV's pinhole; equidistant: the "
+        "fisheye)");
+    }
+    if ((!lensName.empty() || lens == LensType::Fisheye) && named != lens)
+    {
+      throw ParseError(
+        "'distortion_model' " + distortionModel + " contradicts the lens " + LensName(lens));
+    }
+    lens = named;
+  }
+  model.lens = lens;
+  model.distortion = Distortion();
   const Node dn = node["distortion_coefficients"];
   if (!dn.empty() && !dn.isNone())
   {
-    std::vector<double> d = MatrixNumbers(dn, "distortion_coefficients", 0);
-    if (d.size() != 4 && d.size() != 5)
+    const std::vector<double> d = MatrixNumbers(dn, "distortion_coefficients", 0);
+    if (!model.distortion.SetCoefficients(lens, d))
     {
-      throw ParseError("'distortion_coefficients' must have 4 or 5 numbers (k1 k2 p1 p2 [k3]); "
-                       "rational and thin-prism models are not supported");
+      throw ParseError(lens == LensType::Fisheye
+          ? "'distortion_coefficients' of a fisheye lens must have 4 numbers (k1 k2 k3 k4)"
+          : "'distortion_coefficients' must have 4, 5, 8, 12 or 14 numbers (OpenCV's k1 k2 p1 p2 "
+            "[k3 [k4 k5 k6 [s1 s2 s3 s4 [tauX tauY]]]])");
     }
-    d.resize(5, 0.0);
     // OpenCV's calibrations of real lenses give coefficients of a few units (wide-angle lenses a
     // few hundred at most); 1e10 is a typing error that would send every ray off the image.
     for (const double k : d)
@@ -195,11 +221,10 @@ void ReadCalibration(const Node& node, CameraModel& m, bool mirrorRequired)
       {
         std::ostringstream s;
         s << "'distortion_coefficients' " << k
-          << " is not a lens's (each must be within +-1e4; OpenCV's plumb_bob model)";
+          << " is not a lens's (each must be within +-1e4; OpenCV's model)";
         throw ParseError(s.str());
       }
     }
-    model.distortion = Distortion{ d[0], d[1], d[2], d[3], d[4] };
   }
   if (mirrorRequired || !node["mirror"].empty())
   {
@@ -250,8 +275,13 @@ void WriteStorage(cv::FileStorage& out, const CameraModel& m)
   cv::Mat K(3, 3, CV_64F);
   Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(K.ptr<double>()) = m.K();
   out << "camera_matrix" << K;
-  const Distortion& d = m.distortion;
-  cv::Mat D = (cv::Mat_<double>(1, 5) << d.k1, d.k2, d.p1, d.p2, d.k3);
+  if (m.lens != LensType::Pinhole)
+  {
+    out << "lens" << LensName(m.lens);
+  }
+  const std::vector<double> d = m.distortion.Coefficients(m.lens);
+  cv::Mat D(1, static_cast<int>(d.size()), CV_64F);
+  std::copy(d.begin(), d.end(), D.ptr<double>());
   out << "distortion_coefficients" << D;
   out << "mirror"
       << "{";

@@ -2,8 +2,10 @@
 // FileStorage writes them, so OpenCV reads them too, but with the standard `%YAML 1.1` directive).
 //
 // The format (Documentation/opencv-calibration.md): image_width, image_height, camera_matrix (3x3),
-// distortion_coefficients (k1 k2 p1 p2 [k3]), mirror {type: sphere, center [x y z] in the camera
-// frame, radius}, world_to_camera (4x4). Matrices may be written as OpenCV matrices
+// lens (pinhole, the default, or fisheye; or ROS's distortion_model), distortion_coefficients
+// (pinhole: OpenCV's 4, 5, 8, 12 or 14 numbers; fisheye: k1 k2 k3 k4), mirror {type: sphere,
+// center [x y z] in the camera frame, radius}, world_to_camera (4x4). Matrices may be written as
+// OpenCV matrices
 // (!!opencv-matrix) or as plain sequences (row-major).
 #ifndef catarCalibrationIO_h
 #define catarCalibrationIO_h

@@ -133,7 +133,7 @@ ProjectedPoint Projector::Finish(const Vec3& p, const Vec3& r, bool pixel) const
 {
   ProjectedPoint out;
   // The camera images only mirror points in front of it.
-  if (!(r.z() > 0.0 && r.z() * r.z() > 1e-24 * r.squaredNorm()))
+  if (!this->Model.Sees(r))
   {
     out.status = ProjectionStatus::NoReflection;
     return out;
@@ -175,13 +175,11 @@ bool Projector::CameraRay(const Vec2& pixel, Vec3& d, BackProjectedRay& out) con
     out.status = ProjectionStatus::InvalidInput;
     return false;
   }
-  Vec2 xy;
-  if (!this->Model.PixelToNormalized(pixel, xy))
+  if (!this->Model.PixelToDirection(pixel, d))
   {
     out.status = ProjectionStatus::NoReflection;
     return false;
   }
-  d = Vec3(xy.x(), xy.y(), 1.0).normalized();
   return true;
 }
 

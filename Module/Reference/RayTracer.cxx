@@ -53,17 +53,6 @@ bool RayMeetsBox(const Vec3& origin, const Vec3& direction, const Vec3& lo, cons
 
 namespace
 {
-bool SameIntrinsics(const Intrinsics& a, const Intrinsics& b)
-{
-  return a.fx == b.fx && a.fy == b.fy && a.cx == b.cx && a.cy == b.cy && a.skew == b.skew &&
-    a.width == b.width && a.height == b.height;
-}
-
-bool SameDistortion(const Distortion& a, const Distortion& b)
-{
-  return a.k1 == b.k1 && a.k2 == b.k2 && a.p1 == b.p1 && a.p2 == b.p2 && a.k3 == b.k3;
-}
-
 // Runs body over [0, n) with `parallel`, or on this thread without one.
 void Run(const RayTracer::ParallelFor& parallel, std::size_t n,
   const std::function<void(std::size_t, std::size_t)>& body)
@@ -308,8 +297,7 @@ bool RayTracer::PrepareRays(const Projector& projector, int samples, const Paral
   this->CameraToWorld = this->WorldToCamera.transpose();
   this->CameraCentre = -this->CameraToWorld * this->Translation;
   if (this->Width == w && this->Height == h && this->Samples == samples && w > 0 &&
-    SameIntrinsics(this->RaysIntrinsics, model.intrinsics) &&
-    SameDistortion(this->RaysDistortion, model.distortion) && this->RaysMirror == model.mirror)
+    this->RaysLens.SameLens(model) && this->RaysLens.mirror == model.mirror)
   {
     return true; // the same rays in the camera frame
   }
@@ -325,9 +313,7 @@ bool RayTracer::PrepareRays(const Projector& projector, int samples, const Paral
   Run(parallel, static_cast<std::size_t>(this->TilesY), [&](std::size_t b, std::size_t e) {
     this->BackProjectTileRows(projector, static_cast<int>(b), static_cast<int>(e));
   });
-  this->RaysIntrinsics = model.intrinsics;
-  this->RaysDistortion = model.distortion;
-  this->RaysMirror = model.mirror;
+  this->RaysLens = model;
   ++this->RayPreparations;
   return true;
 }

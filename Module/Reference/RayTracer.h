@@ -208,9 +208,7 @@ private:
   int Samples = 1;
   int TilesX = 0;
   int TilesY = 0;
-  Intrinsics RaysIntrinsics;
-  Distortion RaysDistortion;
-  MirrorDescription RaysMirror;
+  CameraModel RaysLens; // the lens and mirror the rays were made for
   std::size_t RayPreparations = 0;
   Mat3 CameraToWorld = Mat3::Identity(); ///< R^T
   Vec3 CameraCentre = Vec3::Zero();      ///< world

@@ -189,11 +189,10 @@ void RenderEnvironmentRows(const Projector& projector, const RoomEnvironment& ro
       {
         return 0.92 * RoomColor(room, ray.mirrorPoint, ray.direction); // ~92% reflectance
       }
-      Vec2 xy;
-      if (ray.status == ProjectionStatus::NoReflection && model.PixelToNormalized(px, xy))
+      Vec3 camera;
+      if (ray.status == ProjectionStatus::NoReflection && model.PixelToDirection(px, camera))
       {
-        const Vec3 d = model.CameraToWorldDirection(Vec3(xy.x(), xy.y(), 1.0).normalized());
-        return RoomColor(room, eye, d);
+        return RoomColor(room, eye, model.CameraToWorldDirection(camera));
       }
       return Vec3::Zero();
     });

@@ -41,13 +41,8 @@ public:
   Sample At(const Vec2& pixel) const
   {
     Sample s;
-    Vec2 xy;
-    if (!pixel.allFinite() || !this->Model.PixelToNormalized(pixel, xy))
-    {
-      return s;
-    }
-    const Vec3 d = Vec3(xy.x(), xy.y(), 1.0).normalized();
-    if (!d.allFinite())
+    Vec3 d;
+    if (!pixel.allFinite() || !this->Model.PixelToDirection(pixel, d))
     {
       return s;
     }

@@ -299,7 +299,7 @@ TEST(CalibrationIO, ReadsRosCameraInfoForTheLens)
   EXPECT_EQ(a.distortion.p2, b.distortion.p2);
   // Other models, and matrices whose size does not match, are refused by name.
   std::string other = ros;
-  other.replace(other.find("plumb_bob"), 9, "rational_polynomial");
+  other.replace(other.find("plumb_bob"), 9, "fov");
   EXPECT_FALSE(ParseCalibration(other, a, error));
   EXPECT_NE(error.find("distortion_model"), std::string::npos) << error;
   std::string wrong = ros;
@@ -332,7 +332,8 @@ TEST(CalibrationIO, UnknownKeysAreErrorsWithSuggestions)
         "mirror: { type: hyperboloid, a: 0.02, b: 0.03, radius: 0.1,\n"
         "  mirror_to_camera: [1,0,0,0, 0,1,0,0, 0,0,1,0.2, 0,0,0,1] }\n",
       "mirror type 'hyperboloid': unknown key 'radius'" },
-    { lens + mirror + "fisheye_model: 1\n", "fisheye" },
+    { lens + mirror + "fisheye_model: 1\ndistortion_coefficients: [0.1, 0, 0, 0, 0]\n",
+      "a fisheye lens must have 4 numbers" },
   };
   for (const Case& c : cases)
   {

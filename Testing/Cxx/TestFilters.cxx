@@ -91,6 +91,61 @@ TEST(vtkCatadioptricCamera, FieldDataAndFileRoundTrip)
   EXPECT_FALSE(back->ReadFromFieldData(empty));
 }
 
+TEST(vtkCatadioptricCamera, LensModelsTravelThroughFieldDataAndFiles)
+{
+  vtkNew<vtkCatadioptricCamera> cam;
+  catar_test::SetSmallDemoCamera(cam);
+  EXPECT_STREQ(cam->GetLens(), "pinhole");
+  const std::vector<double> rational = { 0.25, 0.11, 0.001, -0.0007, 0.009, 0.61, 0.18, 0.012,
+    0.001, -0.0005, 0.0008, 0.0002, 0.01, -0.02 };
+  ASSERT_TRUE(cam->SetLens("pinhole", rational)) << cam->GetLastError();
+  EXPECT_EQ(cam->GetDistortionCoefficients(), rational);
+  EXPECT_DOUBLE_EQ(cam->GetDistortion()[4], 0.009);
+  vtkNew<vtkFieldData> fd;
+  cam->WriteToFieldData(fd);
+  vtkNew<vtkCatadioptricCamera> back;
+  ASSERT_TRUE(back->ReadFromFieldData(fd)) << back->GetLastError();
+  EXPECT_EQ(back->GetDistortionCoefficients(), rational);
+  EXPECT_TRUE(back->GetModel().SameLens(cam->GetModel()));
+
+  const std::vector<double> fisheye = { 0.01, -0.002, 0.0003, -0.00002 };
+  ASSERT_TRUE(cam->SetLens("fisheye", fisheye)) << cam->GetLastError();
+  cam->WriteToFieldData(fd);
+  ASSERT_TRUE(back->ReadFromFieldData(fd)) << back->GetLastError();
+  EXPECT_STREQ(back->GetLens(), "fisheye");
+  EXPECT_EQ(back->GetDistortionCoefficients(), fisheye);
+  const std::string path = ::testing::TempDir() + "/catar_vtkcamera_fisheye.yaml";
+  ASSERT_TRUE(cam->Save(path.c_str())) << cam->GetLastError();
+  vtkNew<vtkCatadioptricCamera> loaded;
+  ASSERT_TRUE(loaded->Load(path.c_str())) << loaded->GetLastError();
+  EXPECT_STREQ(loaded->GetLens(), "fisheye");
+  EXPECT_EQ(loaded->GetDistortionCoefficients(), fisheye);
+  std::remove(path.c_str());
+
+  // Field data written before the lens models (five numbers, no CameraLens) is a pinhole's.
+  fd->RemoveArray("CameraLens");
+  vtkNew<vtkDoubleArray> five;
+  five->SetName("CameraDistortion");
+  for (const double k : { -0.1, 0.01, 0.0, 0.0, 0.001 })
+  {
+    five->InsertNextValue(k);
+  }
+  fd->AddArray(five);
+  ASSERT_TRUE(back->ReadFromFieldData(fd)) << back->GetLastError();
+  EXPECT_STREQ(back->GetLens(), "pinhole");
+  EXPECT_EQ(back->GetDistortionCoefficients(), (std::vector<double>{ -0.1, 0.01, 0, 0, 0.001 }));
+
+  // Wrong models and counts change nothing.
+  vtkNew<catar_test::ErrorCounter> errors;
+  errors->Watch(cam);
+  EXPECT_FALSE(cam->SetLens("telephoto", { 0.0, 0.0, 0.0, 0.0 }));
+  EXPECT_FALSE(cam->SetLens("fisheye", { 0.0, 0.0, 0.0, 0.0, 0.0 }));
+  EXPECT_FALSE(cam->SetLens("pinhole", { 0.0, 0.0, 0.0 }));
+  EXPECT_EQ(errors->Count, 3);
+  EXPECT_STREQ(cam->GetLens(), "fisheye");
+  EXPECT_EQ(cam->GetDistortionCoefficients(), fisheye);
+}
+
 TEST(vtkCatadioptricCamera, MirrorByTypeAndKey)
 {
   vtkNew<vtkCatadioptricCamera> cam;
