@@ -10,6 +10,7 @@
 #include "PoseEstimation.h"
 #include "RayScene.h"
 #include "Remeshing.h"
+#include "RigCalibration.h"
 #include "ScreenSpaceRemeshing.h"
 
 #include <gtest/gtest.h>
@@ -46,6 +47,14 @@ TEST(WithoutPoseSolvers, EveryPoseIsRefusedAndSaysWhy)
   const catar::PoseResult result = catar::EstimatePose(camera, observations);
   EXPECT_FALSE(result.ok);
   EXPECT_TRUE(result.inliers.empty());
+  EXPECT_NE(result.error.find("without OpenGV and Ceres"), std::string::npos) << result.error;
+}
+
+TEST(WithoutPoseSolvers, EveryCalibrationIsRefusedAndSaysWhy)
+{
+  const catar::CalibrationResult result =
+    catar::CalibrateRig(catar::CameraModel(), std::vector<catar::CalibrationView>(4));
+  EXPECT_FALSE(result.ok);
   EXPECT_NE(result.error.find("without OpenGV and Ceres"), std::string::npos) << result.error;
 }
 
