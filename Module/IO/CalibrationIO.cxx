@@ -133,7 +133,7 @@ void ReadCalibration(const Node& node, CameraModel& m, bool mirrorRequired)
   }
   CheckKeys(node,
     { "image_width", "image_height", "camera_matrix", "lens", "distortion_model",
-      "distortion_coefficients", "mirror", "world_to_camera",
+      "distortion_coefficients", "calibration", "mirror", "world_to_camera",
       // Read past: the rest of a ROS camera_info file ...
       "camera_name", "rectification_matrix", "projection_matrix",
       // ... and of the files OpenCV's calibration samples write.
@@ -331,7 +331,8 @@ bool ParseCalibration(const std::string& text, CameraModel& model, std::string& 
     ReadRoot(root, "calibration text", model, error);
 }
 
-bool SaveCalibration(const std::string& path, const CameraModel& model, std::string& error)
+bool SaveCalibration(const std::string& path, const CameraModel& model, std::string& error,
+  const CalibrationRecord* record)
 {
   const std::string problem = model.Validate();
   if (!problem.empty())
@@ -354,7 +355,7 @@ bool SaveCalibration(const std::string& path, const CameraModel& model, std::str
   std::string text;
   try
   {
-    text = CalibrationToString(model, ext == ".json");
+    text = CalibrationToString(model, ext == ".json", record);
   }
   catch (const cv::Exception& e)
   {
@@ -364,12 +365,35 @@ bool SaveCalibration(const std::string& path, const CameraModel& model, std::str
   return WriteWholeFile(path, text, error);
 }
 
-std::string CalibrationToString(const CameraModel& model, bool json)
+std::string CalibrationToString(
+  const CameraModel& model, bool json, const CalibrationRecord* record)
 {
   cv::FileStorage out(json ? ".json" : ".yaml",
     cv::FileStorage::WRITE | cv::FileStorage::MEMORY |
       (json ? cv::FileStorage::FORMAT_JSON : cv::FileStorage::FORMAT_YAML));
   WriteStorage(out, model);
+  if (record)
+  {
+    out << "calibration"
+        << "{";
+    out << "rms_px" << record->rmsPx << "images_used" << record->imagesUsed;
+    out << "images"
+        << "[";
+    for (const std::string& name : record->images)
+    {
+      out << name;
+    }
+    out << "]";
+    out << "estimated"
+        << "{";
+    for (const CalibrationRecord::Number& n : record->estimated)
+    {
+      out << n.name << "{"
+          << "value" << n.value << "sigma" << n.sigma << "unit" << n.unit << "}";
+    }
+    out << "}";
+    out << "}";
+  }
   std::string text = out.releaseAndGetString();
   // OpenCV writes "%YAML:1.0", which is not a YAML directive: standard parsers (PyYAML, ruamel,
   // yaml-cpp) refuse it. "%YAML 1.1" is the standard form, and OpenCV reads it too.

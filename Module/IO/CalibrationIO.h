@@ -13,6 +13,7 @@
 #include "CameraModel.h"
 
 #include <string>
+#include <vector>
 
 namespace catar
 {
@@ -27,15 +28,40 @@ bool LoadLensCalibration(const std::string& path, CameraModel& model, std::strin
 /// Reads a calibration given as text (YAML or JSON), for embedding. Same rules as LoadCalibration.
 bool ParseCalibration(const std::string& text, CameraModel& model, std::string& error);
 
-/// Writes a calibration file; the format follows the extension (.yaml/.yml or .json).
-bool SaveCalibration(const std::string& path, const CameraModel& model, std::string& error);
+/// What a calibration of the rig from images adds to its file (catadioptric-calibrate): the
+/// `calibration` map, which readers read past.
+///   calibration:
+///     rms_px: 0.12            # the corners' reprojection error through the calibrated rig
+///     images_used: 10
+///     images: [ a.png, ... ]  # the views used
+///     estimated: { radius: { value: 0.05, sigma: 2e-5, unit: m }, ... }
+struct CalibrationRecord
+{
+  struct Number
+  {
+    std::string name;
+    std::string unit;
+    double value = 0.0;
+    double sigma = 0.0;
+  };
+  double rmsPx = 0.0;
+  int imagesUsed = 0;
+  std::vector<std::string> images;
+  std::vector<Number> estimated;
+};
+
+/// Writes a calibration file; the format follows the extension (.yaml/.yml or .json). With a
+/// record, its `calibration` map too.
+bool SaveCalibration(const std::string& path, const CameraModel& model, std::string& error,
+  const CalibrationRecord* record = nullptr);
 
 /// The built-in demo camera: Data/calibration/demo-camera.yaml, embedded when the project is
 /// configured (the demo scene's camera; the VTK camera's defaults). Parsed once.
 const CameraModel& DemoCamera();
 
-/// The calibration as YAML (or JSON) text.
-std::string CalibrationToString(const CameraModel& model, bool json = false);
+/// The calibration as YAML (or JSON) text (with the record's map, when given).
+std::string CalibrationToString(
+  const CameraModel& model, bool json = false, const CalibrationRecord* record = nullptr);
 } // namespace catar
 
 #endif

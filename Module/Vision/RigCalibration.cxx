@@ -92,7 +92,7 @@ public:
     {
       this->Sphere = true;
       this->Theta = { sphere.center.x(), sphere.center.y(), sphere.center.z(), sphere.radius };
-      this->Names = { "center x", "center y", "center z", "radius" };
+      this->Names = { "center_x", "center_y", "center_z", "radius" };
       this->Units = { "m", "m", "m", "m" };
       this->Size = { false, false, false, true };
       return "";
@@ -118,14 +118,14 @@ public:
     for (int i = 0; i < this->Rotations; ++i)
     {
       this->Theta.push_back(0.0);
-      this->Names.push_back(std::string("tilt about the mirror's ") + axes[i]);
+      this->Names.push_back(std::string("tilt_") + axes[i]);
       this->Units.push_back("deg");
       this->Size.push_back(false);
     }
     for (int i = 0; i < 3; ++i)
     {
       this->Theta.push_back(t0[i]);
-      this->Names.push_back(std::string("translation ") + axes[i]);
+      this->Names.push_back(std::string("translation_") + axes[i]);
       this->Units.push_back("m");
       this->Size.push_back(false);
     }
@@ -133,11 +133,11 @@ public:
     if (this->Tied)
     {
       shape.erase(shape.begin() + 1);
-      this->Names.insert(this->Names.end(), { "semi_axes x = y", "semi_axes z" });
+      this->Names.insert(this->Names.end(), { "semi_axes_xy", "semi_axes_z" });
     }
     else if (shape.size() == 3)
     {
-      this->Names.insert(this->Names.end(), { key + " x", key + " y", key + " z" });
+      this->Names.insert(this->Names.end(), { key + "_x", key + "_y", key + "_z" });
     }
     else
     {

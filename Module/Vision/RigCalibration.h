@@ -28,8 +28,10 @@
 #define catarRigCalibration_h
 
 #include "CameraModel.h"
+#include "Markers.h"
 #include "PoseEstimation.h"
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -55,8 +57,9 @@ struct CalibrationOptions
   std::function<void(int iteration, double rmsPixels)> progress;
 };
 
-/// One estimated number: its name (e.g. "center x", "translation z", "a", "fx", "k1"), value and
-/// standard deviation (one sigma, from the residuals' Jacobian and their spread).
+/// One estimated number: its name (a key: "center_x", "radius", "tilt_x" (degrees, from the
+/// start's orientation), "translation_z", "a", "focal", "semi_axes_z", "half_angle", "fx", "k1",
+/// ...), value and standard deviation (one sigma, from the residuals' Jacobian and their spread).
 struct CalibratedNumber
 {
   std::string name;
@@ -90,6 +93,26 @@ struct CalibrationResult
 /// maxSizeChange (the board does not fit), or numbers the views do not fix (named).
 CalibrationResult CalibrateRig(const CameraModel& initial,
   const std::vector<CalibrationView>& views, const CalibrationOptions& options = {});
+
+/// An image of the board in the mirror: RGBA8, the top row first.
+struct CalibrationImage
+{
+  std::string name;
+  int width = 0;
+  int height = 0;
+  const std::uint8_t* rgba = nullptr;
+};
+
+/// CalibrateRig from images: the board's markers found in each (DetectMarkers, mirror-imaged),
+/// a first calibration on their corners, the corners then moved onto the markers' edges with the
+/// calibrated rig and each view's pose (RefineMarkerCorners: OpenCV's corners lie about half a
+/// pixel inside, which biases the mirror), and the calibration again from `initial` on those.
+/// `views`, when given, receives the views of the second calibration. Refused with a sentence as
+/// CalibrateRig, and for an image of another size than the calibration's or a board that is not
+/// usable.
+CalibrationResult CalibrateRigFromImages(const CameraModel& initial, const MarkerBoard& board,
+  const std::vector<CalibrationImage>& images, const CalibrationOptions& options = {},
+  std::vector<CalibrationView>* views = nullptr);
 } // namespace catar
 
 #endif
