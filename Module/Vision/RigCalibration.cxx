@@ -631,8 +631,10 @@ CalibrationResult CalibrateRig(const CameraModel& initial,
   problemOptions.evaluation_callback = &state;
   ceres::Problem problem(problemOptions);
   int corners = 0;
-  for (Posed& p : posed)
+  std::vector<std::vector<ceres::ResidualBlockId>> ids(posed.size());
+  for (std::size_t v = 0; v < posed.size(); ++v)
   {
+    Posed& p = posed[v];
     for (const PoseObservation& o : p.used)
     {
       std::vector<double*> blocks = { p.w, p.t, theta.data() };
@@ -640,8 +642,8 @@ CalibrationResult CalibrateRig(const CameraModel& initial,
       {
         blocks.push_back(lensValues.data());
       }
-      problem.AddResidualBlock(
-        new CornerCost(state, p.R0, o), new ceres::HuberLoss(options.robustScale), blocks);
+      ids[v].push_back(problem.AddResidualBlock(
+        new CornerCost(state, p.R0, o), new ceres::HuberLoss(options.robustScale), blocks));
       ++corners;
     }
   }
@@ -661,6 +663,88 @@ CalibrationResult CalibrateRig(const CameraModel& initial,
   {
     out.error = "the calibration did not converge: " + summary.message;
     return out;
+  }
+  // Corners that do not fit (a marker misread, a corner OpenCV put off a bent side): those whose
+  // residual exceeds four times the median's (and options.outlierPixels) are left out, and the
+  // rest solved again.
+  {
+    std::vector<double> norms;
+    std::vector<std::vector<double>> byView(posed.size());
+    for (std::size_t v = 0; v < posed.size(); ++v)
+    {
+      for (const ceres::ResidualBlockId id : ids[v])
+      {
+        double r[2] = { 0.0, 0.0 };
+        double cost = 0.0;
+        const bool ok = problem.EvaluateResidualBlock(id, false, &cost, r, nullptr);
+        const double n = ok ? std::hypot(r[0], r[1]) : 1e30;
+        byView[v].push_back(n);
+        norms.push_back(n);
+      }
+    }
+    std::vector<double> sorted = norms;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double limit = std::max(options.outlierPixels, 4.0 * sorted[sorted.size() / 2]);
+    for (std::size_t v = 0; v < posed.size(); ++v)
+    {
+      std::vector<PoseObservation> kept;
+      std::vector<ceres::ResidualBlockId> keptIds;
+      for (std::size_t i = 0; i < ids[v].size(); ++i)
+      {
+        if (byView[v][i] > limit)
+        {
+          problem.RemoveResidualBlock(ids[v][i]);
+          --corners;
+          ++out.outliers;
+        }
+        else
+        {
+          kept.push_back(posed[v].used[i]);
+          keptIds.push_back(ids[v][i]);
+        }
+      }
+      posed[v].used = kept;
+      ids[v] = keptIds;
+    }
+    // A view left with fewer than 4 corners goes (its pose would be free).
+    for (std::size_t v = posed.size(); v-- > 0;)
+    {
+      if (posed[v].used.size() >= 4)
+      {
+        continue;
+      }
+      for (const ceres::ResidualBlockId id : ids[v])
+      {
+        problem.RemoveResidualBlock(id);
+        --corners;
+        ++out.outliers;
+      }
+      problem.RemoveParameterBlock(posed[v].w);
+      problem.RemoveParameterBlock(posed[v].t);
+      out.skipped.push_back((views[static_cast<std::size_t>(posed[v].view)].name.empty()
+                                ? "view " + std::to_string(posed[v].view + 1)
+                                : views[static_cast<std::size_t>(posed[v].view)].name) +
+        ": fewer than 4 corners fit the calibrated rig");
+      posed.erase(posed.begin() + static_cast<std::ptrdiff_t>(v));
+      ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(v));
+    }
+    if (static_cast<int>(posed.size()) < options.minViews)
+    {
+      out.error = "too few views: " + std::to_string(posed.size()) +
+        " have corners that fit the calibrated rig, at least " + std::to_string(options.minViews) +
+        " are needed";
+      return out;
+    }
+    if (out.outliers > 0)
+    {
+      ceres::Solve(solver, &problem, &summary);
+      out.iterations += static_cast<int>(summary.iterations.size());
+      if (!summary.IsSolutionUsable())
+      {
+        out.error = "the calibration did not converge: " + summary.message;
+        return out;
+      }
+    }
   }
 
   // The residuals and their Jacobian at the solution (without the robust loss).

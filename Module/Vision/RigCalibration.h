@@ -47,8 +47,11 @@ struct CalibrationView
 
 struct CalibrationOptions
 {
-  bool freeLens = false;       ///< refine fx, fy, cx, cy and the distortion too
-  double robustScale = 1.0;    ///< px: Huber's loss is quadratic below this residual
+  bool freeLens = false;    ///< refine fx, fy, cx, cy and the distortion too
+  double robustScale = 1.0; ///< px: Huber's loss is quadratic below this residual
+  /// px: after a first solve, corners whose residual exceeds this and four times the median's
+  /// are left out (CalibrationResult::outliers) and the rest solved again
+  double outlierPixels = 1.0;
   double maxRmsPixels = 2.0;   ///< a calibrated fit worse than this is refused
   double maxSizeChange = 0.08; ///< the mirror's size numbers may move this fraction at most
   int minViews = 3;            ///< views with a board pose, at least
@@ -82,6 +85,7 @@ struct CalibrationResult
   std::vector<CalibratedNumber> mirror; ///< the mirror's estimated numbers
   std::vector<CalibratedNumber> lens;   ///< with freeLens, the lens's
   int iterations = 0;
+  int outliers = 0; ///< corners left out after the first solve
   /// Per used view, each corner's detected pixel and its residual (projected - detected), px.
   std::vector<std::vector<std::pair<Vec2, Vec2>>> residuals;
 };

@@ -2,6 +2,7 @@
 // and after the corners are put on the markers' edges with the calibrated rig).
 #include "RigCalibration.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -73,21 +74,27 @@ CalibrationResult CalibrateRigFromImages(const CameraModel& initial, const Marke
     }
     views.push_back(ViewOf(image.name, board, detections[i]));
   }
-  const CalibrationResult first = CalibrateRig(initial, views, options);
-  if (!first.ok)
+  // Twice: the corners on the edges with the calibrated rig and each view's board pose, and the
+  // calibration again (the second pass starts from corners the first already moved, with a rig
+  // closer to the truth, so that more markers pass RefineMarkerCorners' checks).
+  // The first passes' corners are OpenCV's (biased): only the last pass is held to the
+  // options' bounds on the fit.
+  CalibrationOptions loose = options;
+  loose.maxRmsPixels = std::max(options.maxRmsPixels, 10.0);
+  loose.maxSizeChange = std::max(options.maxSizeChange, 0.5);
+  out = CalibrateRig(initial, views, loose);
+  for (int pass = 0; pass < 2 && out.ok; ++pass)
   {
-    return first;
+    for (std::size_t k = 0; k < out.usedViews.size(); ++k)
+    {
+      const std::size_t i = static_cast<std::size_t>(out.usedViews[k]);
+      CameraModel posed = out.camera;
+      posed.worldToCamera = out.boardToCamera[k];
+      RefineMarkerCorners(w, h, images[i].rgba, posed, board, detections[i]);
+      views[i] = ViewOf(images[i].name, board, detections[i]);
+    }
+    out = CalibrateRig(initial, views, pass == 1 ? options : loose);
   }
-  // The corners on the edges, with the calibrated rig and each view's board pose.
-  for (std::size_t k = 0; k < first.usedViews.size(); ++k)
-  {
-    const std::size_t i = static_cast<std::size_t>(first.usedViews[k]);
-    CameraModel posed = first.camera;
-    posed.worldToCamera = first.boardToCamera[k];
-    RefineMarkerCorners(w, h, images[i].rgba, posed, board, detections[i]);
-    views[i] = ViewOf(images[i].name, board, detections[i]);
-  }
-  out = CalibrateRig(initial, views, options);
   if (viewsOut)
   {
     *viewsOut = views;

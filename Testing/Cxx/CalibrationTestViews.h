@@ -8,6 +8,7 @@
 #include "Markers.h"
 #include "QuadricMirror.h"
 #include "SphereMirror.h"
+#include "TestCameras.h"
 
 #include <Eigen/Geometry>
 
@@ -16,16 +17,17 @@
 
 namespace catar_test
 {
-/// A board of 3 x 3 markers (DICT_4X4_50, ids 0-8) of `size` metres, `pitch` apart, centred on
-/// the board's origin, printed in its x-y plane facing +z.
-inline catar::MarkerBoard CalibrationBoard(double size = 0.06, double pitch = 0.09)
+/// A board of n x n markers (DICT_4X4_50, ids 0 to n^2 - 1) of `size` metres, `pitch` apart,
+/// centred on the board's origin, printed in its x-y plane facing +z.
+inline catar::MarkerBoard CalibrationBoard(double size = 0.06, double pitch = 0.09, int n = 3)
 {
   catar::MarkerBoard board;
-  for (int k = 0; k < 9; ++k)
+  for (int k = 0; k < n * n; ++k)
   {
     catar::BoardMarker m;
     m.id = k;
-    m.translate = catar::Vec3((k % 3 - 1) * pitch, (1 - k / 3) * pitch, 0.0);
+    m.translate =
+      catar::Vec3((k % n - 0.5 * (n - 1)) * pitch, (0.5 * (n - 1) - k / n) * pitch, 0.0);
     m.size = size;
     board.markers.push_back(m);
   }
@@ -64,6 +66,33 @@ inline std::vector<catar::Mat4> BoardPosesAround(
     poses.push_back(pose);
   }
   return poses;
+}
+
+/// A hyperbolic mirror (a = 3 cm, b = 4 cm) tilted 4 degrees about the camera's x axis, its
+/// centre 7.5 cm ahead: the camera 2.5 cm from its outer focus, clearly non-central (the demo's
+/// tilted hyperboloid has the camera 3.5 mm from the focus: so nearly central that its shape and
+/// distance trade for one another in the image). The sheet from its vertex to z = 7 cm.
+inline catar::CameraModel OffFocusHyperboloidCameraModel()
+{
+  catar::CameraModel m = catar_test::TiltedHyperboloidCameraModel();
+  m.mirror.parameters[2 + 11] = 0.075; // mirror_to_camera's z translation
+  return m;
+}
+
+/// An off-axis paraboloid: focal 1.5 cm, its axis turned 6 degrees about the camera's y axis and
+/// its focus 2 mm off the camera's axis, 12 cm ahead; the bowl from its vertex to z = 3 cm.
+inline catar::CameraModel OffAxisParaboloidCameraModel()
+{
+  catar::CameraModel m = DemoCameraModel();
+  const double f = 0.015, tilt = 6.0 * 3.14159265358979323846 / 180.0;
+  const double h[16] = { std::cos(tilt), 0, std::sin(tilt), 0.002, 0, 1, 0, 0, -std::sin(tilt), 0,
+    std::cos(tilt), 0.12, 0, 0, 0, 1 };
+  std::vector<double> p = { f };
+  p.insert(p.end(), h, h + 16);
+  p.push_back(-f);
+  p.push_back(0.03);
+  m.mirror = catar::MirrorDescription("paraboloid", p);
+  return m;
 }
 
 /// How far mirror `b` is from mirror `a` (same type): the largest distance between their

@@ -79,22 +79,6 @@ MirrorDescription Perturbed(
   return p;
 }
 
-// An off-axis paraboloid: focal 1.5 cm, its axis turned 6 degrees about the camera's y axis and
-// its focus 2 mm off the camera's axis, 12 cm ahead; the bowl from its vertex to z = 3 cm.
-CameraModel OffAxisParaboloidCameraModel()
-{
-  CameraModel m = catar_test::DemoCameraModel();
-  const double f = 0.015, tilt = 6.0 * 3.14159265358979323846 / 180.0;
-  const double h[16] = { std::cos(tilt), 0, std::sin(tilt), 0.002, 0, 1, 0, 0, -std::sin(tilt), 0,
-    std::cos(tilt), 0.12, 0, 0, 0, 1 };
-  std::vector<double> p = { f };
-  p.insert(p.end(), h, h + 16);
-  p.push_back(-f);
-  p.push_back(0.03);
-  m.mirror = MirrorDescription("paraboloid", p);
-  return m;
-}
-
 struct Rig
 {
   const char* name;
@@ -104,8 +88,8 @@ struct Rig
 std::vector<Rig> Rigs()
 {
   return { { "sphere", catar_test::DemoCameraModel() },
-    { "tilted hyperboloid", catar_test::TiltedHyperboloidCameraModel() },
-    { "off-axis paraboloid", OffAxisParaboloidCameraModel() } };
+    { "tilted hyperboloid", catar_test::OffFocusHyperboloidCameraModel() },
+    { "off-axis paraboloid", catar_test::OffAxisParaboloidCameraModel() } };
 }
 
 std::vector<Mat4> Poses(const CameraModel& rig, int count = 10)

@@ -1,6 +1,7 @@
-// Frames of marker boards seen in a mirror sphere, rendered by POV-Ray: an independent ray
-// tracer, with its own anti-aliasing and texture filtering, for checks of what reads images
-// (marker detection, pose) against a renderer the project did not write.
+// Frames of marker boards seen in a mirror (a sphere or a quadric), rendered by POV-Ray: an
+// independent ray tracer, with its own anti-aliasing and texture filtering, for checks of what
+// reads images (marker detection, pose, calibration) against a renderer the project did not
+// write.
 //
 // The scene is written in the camera's frame (OpenCV's: x right, y down, z ahead) with y negated
 // for POV-Ray (a reflection of the whole scene, camera included, leaves the image as it is): a
@@ -16,9 +17,11 @@
 
 #include "CameraModel.h"
 #include "Markers.h"
+#include "QuadricMirror.h"
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -56,21 +59,58 @@ inline bool RunPovRay(const std::string& dir, const std::string& name, const std
   return true;
 }
 
-/// Renders the board seen through `camera` (a sphere mirror, no distortion, the principal point
-/// at the image centre) into dir/NAME.png: anti-aliased (POV-Ray's adaptive sampling, 3 levels)
-/// or, with idMask, the id mask. False with a sentence in `error`.
+/// The mirror of a description as a POV-Ray object in POV-Ray's frame (the camera frame, y
+/// negated): the sphere (centre and radius) as a sphere; a quadric type as POV-Ray's quadric of
+/// its Omega (mirror frame), clipped to its z_range and placed by mirror_to_camera. A perfect
+/// mirror. "" for a description it cannot write.
+inline std::string PovRayMirror(const catar::MirrorDescription& description)
+{
+  std::ostringstream s;
+  s.precision(17);
+  const std::vector<double>& p = description.parameters;
+  const std::string finish = " pigment { rgb 0 } finish { ambient 0 diffuse 0 reflection 1 }";
+  if (description.type == "sphere" && p.size() == 4)
+  {
+    s << "sphere { <" << p[0] << ", " << -p[1] << ", " << p[2] << ">, " << p[3] << finish << " }\n";
+    return s.str();
+  }
+  catar::QuadricGeometry g;
+  if (!catar::QuadricFromDescription(description, g) || g.omega.isZero())
+  {
+    return "";
+  }
+  const catar::Mat4& W = g.omega;
+  // A x^2 + B y^2 + C z^2 + D xy + E xz + F yz + G x + H y + I z + J = 0, mirror frame.
+  s << "quadric { <" << W(0, 0) << ", " << W(1, 1) << ", " << W(2, 2) << ">, <" << 2 * W(0, 1)
+    << ", " << 2 * W(0, 2) << ", " << 2 * W(1, 2) << ">, <" << 2 * W(0, 3) << ", " << 2 * W(1, 3)
+    << ", " << 2 * W(2, 3) << ">, " << W(3, 3) << "\n  clipped_by { box { <-10, -10, " << g.zmin
+    << ">, <10, 10, " << g.zmax << "> } }\n";
+  // POV-Ray's matrix <a..l>: x' = a x + d y + g z + j, ...: the columns of M = diag(1, -1, 1) H.
+  catar::Mat4 M = g.mirrorToCamera;
+  M.row(1) *= -1.0;
+  s << "  matrix <" << M(0, 0) << ", " << M(1, 0) << ", " << M(2, 0) << ", " << M(0, 1) << ", "
+    << M(1, 1) << ", " << M(2, 1) << ", " << M(0, 2) << ", " << M(1, 2) << ", " << M(2, 2) << ", "
+    << M(0, 3) << ", " << M(1, 3) << ", " << M(2, 3) << ">\n " << finish << " }\n";
+  return s.str();
+}
+
+/// Renders the board seen through `camera` (a sphere or quadric mirror, no distortion, the
+/// principal point at the image centre) into dir/NAME.png: anti-aliased (POV-Ray's adaptive
+/// sampling, 3 levels) or, with idMask, the id mask. `floor`: the grey floor at world z = 0 (else
+/// a light-grey plate under the board's markers, as a printed board has). False with a sentence in
+/// `error`.
 inline bool RenderMarkerFrame(const std::string& dir, const std::string& name,
   const catar::CameraModel& camera, const catar::MarkerBoard& board, bool idMask, std::string& png,
-  std::string& error)
+  std::string& error, bool floor = true)
 {
   const catar::Intrinsics& k = camera.intrinsics;
-  // The sphere's description: centre x, y, z and radius, camera frame.
-  const std::vector<double>& mirror = camera.mirror.parameters;
-  if (camera.mirror.type != "sphere" || mirror.size() != 4 ||
-    std::abs(k.cx - 0.5 * (k.width - 1)) > 1e-9 || std::abs(k.cy - 0.5 * (k.height - 1)) > 1e-9 ||
-    k.skew != 0.0 || !camera.distortion.IsZero())
+  const std::string mirror = PovRayMirror(camera.mirror);
+  if (mirror.empty() || std::abs(k.cx - 0.5 * (k.width - 1)) > 1e-9 ||
+    std::abs(k.cy - 0.5 * (k.height - 1)) > 1e-9 || k.skew != 0.0 || !camera.distortion.IsZero() ||
+    camera.lens != catar::LensType::Pinhole)
   {
-    error = "POV-Ray frames need a sphere mirror, a centred principal point and no distortion";
+    error = "POV-Ray frames need a sphere or quadric mirror, a centred principal point and a "
+            "pinhole lens without distortion";
     return false;
   }
   const catar::Mat3 R = camera.worldToCamera.topLeftCorner<3, 3>();
@@ -100,15 +140,39 @@ inline bool RenderMarkerFrame(const std::string& dir, const std::string& name,
   s << "camera { perspective location <0, 0, 0> direction <0, 0, 1> right <" << k.width / k.fx
     << ", 0, 0> up <0, " << k.height / k.fy << ", 0> }\n";
   s << "background { rgb " << (idMask ? 0.0 : 0.75) << " }\n";
-  s << "sphere { <" << mirror[0] << ", " << -mirror[1] << ", " << mirror[2] << ">, " << mirror[3]
-    << " pigment { rgb 0 } finish { ambient 0 diffuse 0 reflection 1 } }\n";
-  // The floor, world z = 0, seen from above.
-  const catar::Vec3 up = R * catar::Vec3(0, 0, 1);
-  const catar::Vec3 floorPoint = R * catar::Vec3(0, 0, 0) + t;
-  const double d = up.x() * floorPoint.x() + up.y() * floorPoint.y() + up.z() * floorPoint.z();
-  s << "plane { " << povDirection(catar::Vec3(0, 0, 1)) << ", " << d << " pigment { rgb "
-    << (idMask ? 0.0 : 0.45) << " } finish { ambient 1 diffuse 0 } }\n";
+  s << mirror;
   const int cells = catar::MarkerCells(board.dictionary);
+  if (floor)
+  {
+    // The floor, world z = 0, seen from above.
+    const catar::Vec3 up = R * catar::Vec3(0, 0, 1);
+    const catar::Vec3 floorPoint = R * catar::Vec3(0, 0, 0) + t;
+    const double d = up.x() * floorPoint.x() + up.y() * floorPoint.y() + up.z() * floorPoint.z();
+    s << "plane { " << povDirection(catar::Vec3(0, 0, 1)) << ", " << d << " pigment { rgb "
+      << (idMask ? 0.0 : 0.45) << " } finish { ambient 1 diffuse 0 } }\n";
+  }
+  else if (!board.markers.empty())
+  {
+    // The plate: the markers' extent (white margins included) and one marker's side more, 1 mm
+    // under them (the board's z = 0 plane).
+    double lo[2] = { 1e30, 1e30 }, hi[2] = { -1e30, -1e30 };
+    for (const catar::BoardMarker& m : board.markers)
+    {
+      for (const catar::Vec3& c : m.Corners())
+      {
+        for (int a = 0; a < 2; ++a)
+        {
+          lo[a] = std::min(lo[a], c[a] - 0.5 * m.size);
+          hi[a] = std::max(hi[a], c[a] + 0.5 * m.size);
+        }
+      }
+    }
+    s << "mesh2 { vertex_vectors { 4, " << pov(catar::Vec3(lo[0], lo[1], -0.001)) << ", "
+      << pov(catar::Vec3(hi[0], lo[1], -0.001)) << ", " << pov(catar::Vec3(hi[0], hi[1], -0.001))
+      << ", " << pov(catar::Vec3(lo[0], hi[1], -0.001))
+      << " } face_indices { 2, <0, 1, 2>, <0, 2, 3> } pigment { rgb " << (idMask ? 0.0 : 0.8)
+      << " } finish { ambient 1 diffuse 0 } }\n";
+  }
   for (const catar::BoardMarker& m : board.markers)
   {
     // The printed square with its white margin of one cell: the black square's corners pushed
