@@ -28,6 +28,7 @@ const std::vector<Program>& Programs()
     { "catadioptric-compare", CATAR_COMPARE_PROGRAM, "--tolerence=3", "--tolerance" },
     { "catadioptric-pose", CATAR_POSE_PROGRAM, "--thresold", "--threshold" },
     { "catadioptric-mirror-outline", CATAR_MIRROR_OUTLINE_PROGRAM, "--overlya", "--overlay" },
+    { "catadioptric-calibrate", CATAR_CALIBRATE_PROGRAM, "--evrey", "--every" },
   };
   return programs;
 }

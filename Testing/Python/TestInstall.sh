@@ -60,7 +60,7 @@ done
 # Every document a program's --help names is installed where its footer says, and every program
 # has a manual page that lists its options.
 for program in catadioptric-render catadioptric-compare catadioptric-pose \
-  catadioptric-mirror-outline; do
+  catadioptric-mirror-outline catadioptric-calibrate; do
   help=$("$prefix/bin/$program" --help)
   grep -q "Documentation: .* installed as .*/share/doc/CatadioptricAR/NAME.md" <<< "$help" ||
     { echo "$program --help does not say where the documents are"; exit 1; }
