@@ -161,6 +161,8 @@ int main(int argc, char** argv)
       const std::vector<cv::Mat>& frames = blurred ? noisy : clean;
       std::vector<std::vector<std::uint8_t>> rgba;
       std::vector<CalibrationImage> images;
+      rgba.reserve(frames.size());
+      images.reserve(frames.size());
       for (const cv::Mat& f : frames)
       {
         rgba.push_back(RgbaPixels(f));
