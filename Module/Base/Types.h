@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdint>
 
 namespace catar
@@ -46,6 +47,28 @@ inline Mat3 Skew(const Vec3& v)
   Mat3 m;
   m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return m;
+}
+
+/// The rotation of the angle-axis vector w (SO(3)'s exponential): |w| radians about w.
+inline Mat3 RotationFromAngleAxis(const Vec3& w)
+{
+  const double angle = w.norm();
+  return angle > 0.0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() : Mat3::Identity();
+}
+
+/// The left Jacobian of SO(3)'s exponential: d exp(w) = [J_l(w) dw]x exp(w). So the derivative of
+/// exp(w) X with respect to w is -[exp(w) X]x J_l(w) (the pose solvers' rotation updates).
+inline Mat3 RotationLeftJacobian(const Vec3& w)
+{
+  const double theta = w.norm();
+  const Mat3 W = Skew(w);
+  if (theta < 1e-8)
+  {
+    return Mat3::Identity() + 0.5 * W;
+  }
+  const double t2 = theta * theta;
+  return Mat3::Identity() + (1.0 - std::cos(theta)) / t2 * W +
+    (theta - std::sin(theta)) / (t2 * theta) * W * W;
 }
 
 /// Two unit vectors perpendicular to the unit vector d and to each other (d, e1, e2

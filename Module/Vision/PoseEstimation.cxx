@@ -330,12 +330,6 @@ int CountInliers(const Projector& projector, const std::vector<PoseObservation>&
   return count;
 }
 
-Mat3 RotationFromAngleAxis(const Vec3& w)
-{
-  const double angle = w.norm();
-  return angle > 0.0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() : Mat3::Identity();
-}
-
 // One observation's pixel residual for the pose R = exp(w) R0, t (world to camera), x = (w, t).
 // Derivatives by the chain rule: the pixel's derivative with respect to the point in the camera
 // frame (Projector::PixelDerivative: three directions, half the projections of differencing the
@@ -380,26 +374,12 @@ public:
     if (jacobians[0]) // d p / d w = -[R R0 X]x J_l(w), J_l the left Jacobian of SO(3)
     {
       Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> dw(jacobians[0]);
-      dw = dPixel * (-Skew(R * this->R0World) * LeftJacobian(w));
+      dw = dPixel * (-Skew(R * this->R0World) * RotationLeftJacobian(w));
     }
     return true;
   }
 
 private:
-  // The left Jacobian of SO(3)'s exponential: d exp(w) = [J_l(w) dw]x exp(w).
-  static Mat3 LeftJacobian(const Vec3& w)
-  {
-    const double theta = w.norm();
-    const Mat3 W = Skew(w);
-    if (theta < 1e-8)
-    {
-      return Mat3::Identity() + 0.5 * W;
-    }
-    const double t2 = theta * theta;
-    return Mat3::Identity() + (1.0 - std::cos(theta)) / t2 * W +
-      (theta - std::sin(theta)) / (t2 * theta) * W * W;
-  }
-
   const Projector& ProjectorRef;
   const Vec3 R0World; // R0 X: the world point turned by the start's rotation
   const Vec2 Pixel;

@@ -24,26 +24,6 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegrees = 180.0 / kPi;
 
-Mat3 Exp(const Vec3& w)
-{
-  const double angle = w.norm();
-  return angle > 0.0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() : Mat3::Identity();
-}
-
-// The left Jacobian of SO(3)'s exponential: d exp(w) = [J_l(w) dw]x exp(w).
-Mat3 LeftJacobian(const Vec3& w)
-{
-  const double theta = w.norm();
-  const Mat3 W = Skew(w);
-  if (theta < 1e-8)
-  {
-    return Mat3::Identity() + 0.5 * W;
-  }
-  const double t2 = theta * theta;
-  return Mat3::Identity() + (1.0 - std::cos(theta)) / t2 * W +
-    (theta - std::sin(theta)) / (t2 * theta) * W * W;
-}
-
 // The mirror as a quadric of the camera frame: F(r) = r^T A r + 2 B^T r + C.
 struct CameraQuadric
 {
@@ -195,7 +175,7 @@ public:
     const Vec3 delta(theta[0], theta[1], this->Rotations == 3 ? theta[2] : 0.0);
     const double* t = theta + this->Rotations;
     Mat4 H = Mat4::Identity();
-    H.topLeftCorner<3, 3>() = this->R0 * Exp(delta);
+    H.topLeftCorner<3, 3>() = this->R0 * RotationFromAngleAxis(delta);
     H.topRightCorner<3, 1>() = Vec3(t[0], t[1], t[2]);
     Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(
       d.parameters.data() + this->PoseOffset) = H;
@@ -402,7 +382,7 @@ public:
     }
     const Vec3 w(p[0][0], p[0][1], p[0][2]);
     const Vec3 t(p[1][0], p[1][1], p[1][2]);
-    const Mat3 R = Exp(w);
+    const Mat3 R = RotationFromAngleAxis(w);
     const Vec3 P = R * this->R0X + t;
     const ProjectedPoint q = this->State.Current->ProjectCamera(P);
     if (!HasProjection(q.status))
@@ -465,7 +445,7 @@ public:
     if (jacobians[0]) // d P / d w = -[R R0 X]x J_l(w)
     {
       Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> dw(jacobians[0]);
-      dw = dPixelDP * (-Skew(R * this->R0X) * LeftJacobian(w));
+      dw = dPixelDP * (-Skew(R * this->R0X) * RotationLeftJacobian(w));
     }
     if (jacobians[1])
     {
@@ -801,7 +781,7 @@ CalibrationResult CalibrateRig(const CameraModel& initial,
     out.residuals.push_back(std::move(list));
     out.usedViews.push_back(p.view);
     Mat4 pose = Mat4::Identity();
-    pose.topLeftCorner<3, 3>() = Exp(Vec3(p.w[0], p.w[1], p.w[2])) * p.R0;
+    pose.topLeftCorner<3, 3>() = RotationFromAngleAxis(Vec3(p.w[0], p.w[1], p.w[2])) * p.R0;
     pose.topRightCorner<3, 1>() = Vec3(p.t[0], p.t[1], p.t[2]);
     out.boardToCamera.push_back(pose);
   }

@@ -35,30 +35,6 @@ using namespace catar;
 using namespace catar_independent;
 using Clock = std::chrono::steady_clock;
 
-MirrorDescription StartOff(const MirrorDescription& d)
-{
-  MirrorDescription p = d;
-  const Vec3 move = 0.003 * Vec3(1, -1, 1).normalized();
-  SphereMirror s;
-  if (SphereMirror::From(d, s))
-  {
-    s.center += move;
-    s.radius *= 1.05;
-    return s;
-  }
-  const MirrorType* type = FindMirrorType(d.type, d.parameters.size());
-  const int offset = type->ParameterOffset("mirror_to_camera");
-  Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>> H(p.parameters.data() + offset);
-  H.topLeftCorner<3, 3>() = Mat3(H.topLeftCorner<3, 3>()) *
-    Eigen::AngleAxisd(2.0 * 3.14159265358979323846 / 180.0, Vec3::UnitX()).toRotationMatrix();
-  H.topRightCorner<3, 1>() += move;
-  for (int i = 0; i < offset; ++i)
-  {
-    p.parameters[static_cast<std::size_t>(i)] *= 1.05;
-  }
-  return p;
-}
-
 double Milliseconds(Clock::time_point a, Clock::time_point b)
 {
   return std::chrono::duration<double, std::milli>(b - a).count();
@@ -155,7 +131,7 @@ int main(int argc, char** argv)
       noisy.push_back(LensBlurAndNoise(clean.back(), 1.0, 3.0, 11 + v));
     }
     CameraModel start = truth;
-    start.mirror = StartOff(truth.mirror);
+    start.mirror = catar_test::MirrorStartOff(truth.mirror, 0.003, 2.0, 0.05);
     for (const bool blurred : { false, true })
     {
       const std::vector<cv::Mat>& frames = blurred ? noisy : clean;

@@ -6,12 +6,15 @@
 
 #include "CameraModel.h"
 #include "Markers.h"
+#include "Mirror.h"
 #include "QuadricMirror.h"
+#include "RigCalibration.h"
 #include "SphereMirror.h"
 #include "TestCameras.h"
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -93,6 +96,61 @@ inline catar::CameraModel OffAxisParaboloidCameraModel()
   p.push_back(0.03);
   m.mirror = catar::MirrorDescription("paraboloid", p);
   return m;
+}
+
+/// The mirror moved by `metres` (along (1, -1, 1) / sqrt 3), turned by `degrees` (a quadric's,
+/// about its frame's x axis) and its shape numbers scaled by 1 + fraction: a start that is off.
+inline catar::MirrorDescription MirrorStartOff(
+  const catar::MirrorDescription& d, double metres, double degrees, double fraction)
+{
+  catar::MirrorDescription p = d;
+  const catar::Vec3 move = metres * catar::Vec3(1, -1, 1).normalized();
+  catar::SphereMirror s;
+  if (catar::SphereMirror::From(d, s))
+  {
+    s.center += move;
+    s.radius *= 1.0 + fraction;
+    return s;
+  }
+  const catar::MirrorType* type = catar::FindMirrorType(d.type, d.parameters.size());
+  const int offset = type->ParameterOffset("mirror_to_camera");
+  Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>> H(p.parameters.data() + offset);
+  H.topLeftCorner<3, 3>() = catar::Mat3(H.topLeftCorner<3, 3>()) *
+    Eigen::AngleAxisd(degrees * 3.14159265358979323846 / 180.0, catar::Vec3::UnitX())
+      .toRotationMatrix();
+  H.topRightCorner<3, 1>() += move;
+  for (int i = 0; i < offset; ++i)
+  {
+    p.parameters[static_cast<std::size_t>(i)] *= 1.0 + fraction;
+  }
+  return p;
+}
+
+/// The one-sigma bounds a calibration reports for the mirror: of its position (the centre's or
+/// mirror_to_camera's translation, metres: the root of the sum of the components' variances), its
+/// tilt (degrees, likewise) and its shape (the largest relative sigma of its size numbers).
+inline void MirrorSigmas(const std::vector<catar::CalibratedNumber>& mirror, double& metres,
+  double& degrees, double& shape)
+{
+  double position = 0.0, tilt = 0.0;
+  shape = 0.0;
+  for (const catar::CalibratedNumber& n : mirror)
+  {
+    if (n.name.find("tilt") == 0)
+    {
+      tilt += n.sigma * n.sigma;
+    }
+    else if (n.name.find("center") == 0 || n.name.find("translation") == 0)
+    {
+      position += n.sigma * n.sigma;
+    }
+    else
+    {
+      shape = std::max(shape, n.sigma / n.value);
+    }
+  }
+  metres = std::sqrt(position);
+  degrees = std::sqrt(tilt);
 }
 
 /// How far mirror `b` is from mirror `a` (same type): the largest distance between their

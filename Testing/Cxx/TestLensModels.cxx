@@ -70,6 +70,27 @@ std::vector<Vec3> DirectionsOverTheImage(const CameraModel& m, int count)
   return out;
 }
 
+// The largest distance between the model's pixels of the directions and OpenCV's (`project`:
+// cv::projectPoints or cv::fisheye::projectPoints of the directions as points).
+template<class Project>
+double WorstAgainstOpenCV(const CameraModel& m, const std::vector<Vec3>& dirs, Project project)
+{
+  std::vector<cv::Point3d> pts;
+  pts.reserve(dirs.size());
+  for (const Vec3& d : dirs)
+  {
+    pts.emplace_back(d.x(), d.y(), d.z());
+  }
+  std::vector<cv::Point2d> px;
+  project(pts, px);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < pts.size(); ++i)
+  {
+    worst = std::max(worst, (m.DirectionToPixel(dirs[i]) - Vec2(px[i].x, px[i].y)).norm());
+  }
+  return worst;
+}
+
 // Pixel -> direction -> pixel on a grid over the image, borders included: the largest error.
 double WorstRoundTrip(const CameraModel& m, int& failures)
 {
@@ -104,21 +125,11 @@ TEST(LensModels, PinholeOfEveryLengthMatchesOpenCV)
     ASSERT_EQ(m.Validate(), "");
     const std::vector<double> coefficients = m.distortion.Coefficients(m.lens);
     EXPECT_EQ(coefficients.size(), static_cast<std::size_t>(std::max(count, 5)));
-    const std::vector<Vec3> dirs = DirectionsOverTheImage(m, 3000);
-    std::vector<cv::Point3d> pts;
-    pts.reserve(dirs.size());
-    for (const Vec3& d : dirs)
-    {
-      pts.emplace_back(d.x(), d.y(), d.z());
-    }
-    std::vector<cv::Point2d> px;
-    cv::projectPoints(
-      pts, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), CameraMatrix(m), cv::Mat(coefficients), px);
-    double worst = 0.0;
-    for (std::size_t i = 0; i < pts.size(); ++i)
-    {
-      worst = std::max(worst, (m.DirectionToPixel(dirs[i]) - Vec2(px[i].x, px[i].y)).norm());
-    }
+    const double worst = WorstAgainstOpenCV(m, DirectionsOverTheImage(m, 3000),
+      [&](const std::vector<cv::Point3d>& pts, std::vector<cv::Point2d>& px) {
+        cv::projectPoints(
+          pts, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), CameraMatrix(m), cv::Mat(coefficients), px);
+      });
     EXPECT_LE(worst, 1e-9);
     int failures = 0;
     EXPECT_LE(WorstRoundTrip(m, failures), 1e-9);
@@ -143,22 +154,13 @@ TEST(LensModels, FisheyeMatchesOpenCVAndSeesPast90Degrees)
       }
     }
     ASSERT_GT(dirs.size(), 3000u);
-    std::vector<cv::Point3d> pts;
-    pts.reserve(dirs.size());
-    for (const Vec3& d : dirs)
-    {
-      pts.emplace_back(d.x(), d.y(), d.z());
-    }
-    std::vector<cv::Point2d> px;
     const std::vector<double> D = m.distortion.Coefficients(m.lens);
     ASSERT_EQ(D.size(), 4u);
-    cv::fisheye::projectPoints(pts, px, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), CameraMatrix(m),
-      cv::Mat(D), m.intrinsics.skew / m.intrinsics.fx);
-    double worst = 0.0;
-    for (std::size_t i = 0; i < pts.size(); ++i)
-    {
-      worst = std::max(worst, (m.DirectionToPixel(dirs[i]) - Vec2(px[i].x, px[i].y)).norm());
-    }
+    const double worst = WorstAgainstOpenCV(
+      m, dirs, [&](const std::vector<cv::Point3d>& pts, std::vector<cv::Point2d>& px) {
+        cv::fisheye::projectPoints(pts, px, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), CameraMatrix(m),
+          cv::Mat(D), m.intrinsics.skew / m.intrinsics.fx);
+      });
     EXPECT_LE(worst, 1e-9);
     int failures = 0;
     EXPECT_LE(WorstRoundTrip(m, failures), 1e-9);
