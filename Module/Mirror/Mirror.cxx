@@ -139,6 +139,14 @@ std::string ValidateMirror(const MirrorDescription& description)
   return type->validate ? type->validate(description) : std::string();
 }
 
+bool MirrorQuadric(const MirrorDescription& description, Mat3& A, Vec3& B, double& C)
+{
+  const MirrorType* type = FindMirrorType(description.type, description.parameters.size());
+  return type && type->quadric &&
+    static_cast<int>(description.parameters.size()) == type->ParameterCount() &&
+    type->quadric(description, A, B, C);
+}
+
 std::shared_ptr<const Mirror> MakeMirror(const MirrorDescription& description, std::string& error)
 {
   error = ValidateMirror(description);

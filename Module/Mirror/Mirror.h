@@ -88,6 +88,10 @@ struct MirrorType
   std::string (*validate)(const MirrorDescription& description) = nullptr;
   /// The model of a valid description.
   std::shared_ptr<const Mirror> (*make)(const MirrorDescription& description) = nullptr;
+  /// The surface of a description of this type (its whole surface, the cut aside) as the quadric
+  /// F(r) = r^T A r + 2 B^T r + C = 0 of the camera frame, negative inside; false when it cannot
+  /// say (numbers out of range). Cheap: no model is built (the calibration differentiates it).
+  bool (*quadric)(const MirrorDescription& description, Mat3& A, Vec3& B, double& C) = nullptr;
 
   /// The total count of numbers of this type.
   int ParameterCount() const;
@@ -109,6 +113,10 @@ std::string MirrorTypeNames();
 /// Empty when the description names a known type with the right count of finite numbers that
 /// describe a usable mirror; otherwise a sentence that says what is wrong.
 std::string ValidateMirror(const MirrorDescription& description);
+
+/// The description's surface as a quadric of the camera frame (MirrorType::quadric); false for an
+/// unknown type or a wrong count, or when the type cannot say.
+bool MirrorQuadric(const MirrorDescription& description, Mat3& A, Vec3& B, double& C);
 
 /// The model of a description, or nullptr (and error set) when ValidateMirror fails.
 std::shared_ptr<const Mirror> MakeMirror(const MirrorDescription& description, std::string& error);

@@ -220,6 +220,26 @@ std::shared_ptr<const detail::QuadricSurface> Build(
   return surface->Viewpoint().allFinite() ? surface : nullptr;
 }
 
+// The quadric of the camera frame: Omega moved by mirror_to_camera (H^-T Omega H^-1).
+bool CameraQuadric(const MirrorDescription& d, Mat3& A, Vec3& B, double& C)
+{
+  QuadricGeometry g;
+  if (!QuadricFromDescription(d, g) || g.omega.isZero())
+  {
+    return false;
+  }
+  const Mat3 R = g.mirrorToCamera.topLeftCorner<3, 3>();
+  const Vec3 t = g.mirrorToCamera.topRightCorner<3, 1>();
+  Mat4 inverse = Mat4::Identity();
+  inverse.topLeftCorner<3, 3>() = R.transpose();
+  inverse.topRightCorner<3, 1>() = -R.transpose() * t;
+  const Mat4 Q = inverse.transpose() * g.omega * inverse;
+  A = Q.topLeftCorner<3, 3>();
+  B = Q.topRightCorner<3, 1>();
+  C = Q(3, 3);
+  return true;
+}
+
 MirrorType MakeType(const std::string& name, const std::string& help,
   std::vector<MirrorParameter> shape, std::vector<double> defaults)
 {
@@ -234,6 +254,7 @@ MirrorType MakeType(const std::string& name, const std::string& help,
     QuadricFromDescription(d, g);
     return Build(d, g);
   };
+  t.quadric = &CameraQuadric;
   return t;
 }
 } // namespace

@@ -518,6 +518,17 @@ MirrorType SphereMirrorType()
   t.defaults = static_cast<MirrorDescription>(defaults).parameters;
   t.validate = &ValidateSphere;
   t.make = &MakeSphere;
+  t.quadric = [](const MirrorDescription& d, Mat3& A, Vec3& B, double& C) {
+    SphereMirror s;
+    if (!SphereMirror::From(d, s))
+    {
+      return false;
+    }
+    A = Mat3::Identity();
+    B = -s.center;
+    C = s.center.squaredNorm() - s.radius * s.radius;
+    return true;
+  };
   return t;
 }
 } // namespace catar

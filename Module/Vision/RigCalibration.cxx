@@ -3,8 +3,6 @@
 #include "LensModels.h"
 #include "Mirror.h"
 #include "Projector.h"
-#include "QuadricMirror.h"
-#include "SphereMirror.h"
 
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
@@ -34,29 +32,7 @@ struct CameraQuadric
 
 bool QuadricOf(const MirrorDescription& d, CameraQuadric& q)
 {
-  SphereMirror sphere;
-  if (SphereMirror::From(d, sphere))
-  {
-    q.A = Mat3::Identity();
-    q.B = -sphere.center;
-    q.C = sphere.center.squaredNorm() - sphere.radius * sphere.radius;
-    return true;
-  }
-  QuadricGeometry g;
-  if (!QuadricFromDescription(d, g))
-  {
-    return false;
-  }
-  const Mat3 R = g.mirrorToCamera.topLeftCorner<3, 3>();
-  const Vec3 t = g.mirrorToCamera.topRightCorner<3, 1>();
-  Mat4 inverse = Mat4::Identity();
-  inverse.topLeftCorner<3, 3>() = R.transpose();
-  inverse.topRightCorner<3, 1>() = -R.transpose() * t;
-  const Mat4 Q = inverse.transpose() * g.omega * inverse;
-  q.A = Q.topLeftCorner<3, 3>();
-  q.B = Q.topRightCorner<3, 1>();
-  q.C = Q(3, 3);
-  return true;
+  return MirrorQuadric(d, q.A, q.B, q.C);
 }
 
 // What is estimated of the mirror, as a vector theta (see the header).
@@ -67,21 +43,29 @@ public:
   std::string Init(const MirrorDescription& start)
   {
     this->Start = start;
-    SphereMirror sphere;
-    if (SphereMirror::From(start, sphere))
-    {
-      this->Sphere = true;
-      this->Theta = { sphere.center.x(), sphere.center.y(), sphere.center.z(), sphere.radius };
-      this->Names = { "center_x", "center_y", "center_z", "radius" };
-      this->Units = { "m", "m", "m", "m" };
-      this->Size = { false, false, false, true };
-      return "";
-    }
     const MirrorType* type = FindMirrorType(start.type, start.parameters.size());
-    if (!type || start.type == "quadric")
+    if (!type || !type->quadric || start.type == "quadric")
     {
       return "a mirror of type '" + start.type +
         "' cannot be calibrated (sphere, hyperboloid, paraboloid, ellipsoid, cone)";
+    }
+    if (type->ParameterOffset("mirror_to_camera") < 0)
+    {
+      // A type placed by its own numbers (the sphere's center and radius): they are estimated
+      // as they are; every one but a centre is a size.
+      this->Direct = true;
+      this->Theta = start.parameters;
+      const char* axes[3] = { "_x", "_y", "_z" };
+      for (const MirrorParameter& p : type->parameters)
+      {
+        for (int k = 0; k < p.count; ++k)
+        {
+          this->Names.push_back(p.count == 1 ? p.key : p.key + axes[k % 3]);
+          this->Units.push_back("m");
+          this->Size.push_back(p.key != "center");
+        }
+      }
+      return "";
     }
     this->PoseOffset = type->ParameterOffset("mirror_to_camera");
     const Mat4 H = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(
@@ -149,12 +133,14 @@ public:
   // where a lost image would stop the solver.
   MirrorDescription Widened(const MirrorDescription& d) const
   {
-    if (this->Sphere)
+    const MirrorType* type = FindMirrorType(d.type, d.parameters.size());
+    const int offset = type ? type->ParameterOffset("z_range") : -1;
+    if (this->Direct || offset < 0)
     {
       return d;
     }
     MirrorDescription w = d;
-    const std::size_t z = w.parameters.size() - 2;
+    const std::size_t z = static_cast<std::size_t>(offset);
     const double zmin = w.parameters[z];
     const double zmax = w.parameters[z + 1];
     const double margin = 0.5 * (zmax - zmin);
@@ -167,9 +153,9 @@ public:
   MirrorDescription Describe(const double* theta) const
   {
     MirrorDescription d = this->Start;
-    if (this->Sphere)
+    if (this->Direct)
     {
-      d.parameters.assign(theta, theta + 4);
+      d.parameters.assign(theta, theta + this->Theta.size());
       return d;
     }
     const Vec3 delta(theta[0], theta[1], this->Rotations == 3 ? theta[2] : 0.0);
@@ -197,13 +183,13 @@ public:
   double Step(int i) const
   {
     const std::size_t k = static_cast<std::size_t>(i);
-    return !this->Sphere && i < this->Rotations ? 1e-6 : this->Units[k] == "deg" ? 1e-5 : 1e-7;
+    return !this->Direct && i < this->Rotations ? 1e-6 : this->Units[k] == "deg" ? 1e-5 : 1e-7;
   }
 
   // Theta's value as reported (rotations in degrees).
   double Reported(int i, double value) const
   {
-    return !this->Sphere && i < this->Rotations ? value * kDegrees : value;
+    return !this->Direct && i < this->Rotations ? value * kDegrees : value;
   }
 
   std::vector<double> Theta;
@@ -213,7 +199,7 @@ public:
 
 private:
   MirrorDescription Start;
-  bool Sphere = false;
+  bool Direct = false; // the type's numbers are theta (no mirror_to_camera)
   bool Tied = false;
   int Rotations = 0;
   int PoseOffset = 0;
