@@ -44,6 +44,49 @@ TEST(MirrorTypes, EveryTypeDescribesItselfConsistently)
   EXPECT_EQ(FindMirrorType("no such mirror"), nullptr);
 }
 
+TEST(MirrorTypes, EveryTypeIsAQuadricOfTheCameraFrame)
+{
+  // The points where camera rays meet each type's default mirror (its own Intersect) lie on the
+  // quadric MirrorQuadric gives (F = 0 to rounding, relative to |grad F| |r|), and the normal
+  // there is along grad F.
+  for (const MirrorType& t : MirrorTypes())
+  {
+    SCOPED_TRACE(t.name);
+    const MirrorDescription d(t.name, t.defaults);
+    Mat3 A;
+    Vec3 B;
+    double C = 0.0;
+    ASSERT_TRUE(MirrorQuadric(d, A, B, C));
+    std::string error;
+    const std::shared_ptr<const Mirror> m = MakeMirror(d, error);
+    ASSERT_TRUE(m) << error;
+    int hits = 0;
+    for (int i = -10; i <= 10; ++i)
+    {
+      for (int j = -10; j <= 10; ++j)
+      {
+        const Vec3 ray = Vec3(0.04 * i, 0.04 * j, 1.0).normalized();
+        Vec3 r, n;
+        if (!m->Intersect(ray, r, n))
+        {
+          continue;
+        }
+        ++hits;
+        const Vec3 g = 2.0 * (A * r + B);
+        const double F = r.dot(A * r) + 2.0 * B.dot(r) + C;
+        EXPECT_LE(std::abs(F), 1e-12 * g.norm() * std::max(1.0, r.norm()));
+        EXPECT_GT(std::abs(g.normalized().dot(n)), 1.0 - 1e-9);
+      }
+    }
+    EXPECT_GT(hits, 10);
+  }
+  Mat3 A;
+  Vec3 B;
+  double C = 0.0;
+  EXPECT_FALSE(MirrorQuadric(MirrorDescription("no such mirror", { 1.0 }), A, B, C));
+  EXPECT_FALSE(MirrorQuadric(MirrorDescription("sphere", { 0.0, 0.0 }), A, B, C));
+}
+
 TEST(MirrorTypes, BadDescriptionsAreRefusedWithASentence)
 {
   std::string error;
