@@ -228,20 +228,7 @@ int Run(int argc, char* argv[])
   {
     return Error("cannot calibrate: " + result.error);
   }
-  catar::CalibrationRecord record;
-  record.rmsPx = result.rmsPixels;
-  record.imagesUsed = result.imagesUsed;
-  for (const int v : result.usedViews)
-  {
-    record.images.push_back(loaded.names[static_cast<std::size_t>(v)]);
-  }
-  for (const auto* list : { &result.mirror, &result.lens })
-  {
-    for (const catar::CalibratedNumber& n : *list)
-    {
-      record.estimated.push_back({ n.name, n.unit, n.value, n.sigma });
-    }
-  }
+  const catar::CalibrationRecord record = catar::RecordOf(result, loaded.names);
   catar::CameraModel rig = result.camera;
   rig.worldToCamera = initial.worldToCamera;
   if (!catar::SaveCalibration(output, rig, error, &record))

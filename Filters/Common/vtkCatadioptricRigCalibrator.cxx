@@ -172,20 +172,7 @@ bool vtkCatadioptricRigCalibrator::Calibrate()
   this->Calibrated->SetModel(model);
   this->RMSError = r.rmsPixels;
   this->NumberOfImagesUsed = r.imagesUsed;
-  catar::CalibrationRecord& record = this->Internal->Record;
-  record.rmsPx = r.rmsPixels;
-  record.imagesUsed = r.imagesUsed;
-  for (const int v : r.usedViews)
-  {
-    record.images.push_back(this->Internal->Names[static_cast<std::size_t>(v)]);
-  }
-  for (const auto* list : { &r.mirror, &r.lens })
-  {
-    for (const catar::CalibratedNumber& n : *list)
-    {
-      record.estimated.push_back({ n.name, n.unit, n.value, n.sigma });
-    }
-  }
+  this->Internal->Record = catar::RecordOf(r, this->Internal->Names);
   this->Internal->Result = std::move(r);
   this->Modified();
   return true;

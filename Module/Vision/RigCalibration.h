@@ -27,6 +27,7 @@
 #ifndef catarRigCalibration_h
 #define catarRigCalibration_h
 
+#include "CalibrationIO.h"
 #include "CameraModel.h"
 #include "Markers.h"
 #include "PoseEstimation.h"
@@ -97,6 +98,10 @@ struct CalibrationResult
 /// maxSizeChange (the board does not fit), or numbers the views do not fix (named).
 CalibrationResult CalibrateRig(const CameraModel& initial,
   const std::vector<CalibrationView>& views, const CalibrationOptions& options = {});
+
+/// What a calibration's file records of it (CalibrationIO.h's `calibration` map): the RMS, the
+/// names of the views used (names[i]: view i's) and every estimated number, the mirror's first.
+CalibrationRecord RecordOf(const CalibrationResult& result, const std::vector<std::string>& names);
 
 /// An image of the board in the mirror: RGBA8, the top row first.
 struct CalibrationImage

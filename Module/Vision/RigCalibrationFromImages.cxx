@@ -42,6 +42,25 @@ CalibrationView ViewOf(
 }
 } // namespace
 
+CalibrationRecord RecordOf(const CalibrationResult& result, const std::vector<std::string>& names)
+{
+  CalibrationRecord record;
+  record.rmsPx = result.rmsPixels;
+  record.imagesUsed = result.imagesUsed;
+  for (const int v : result.usedViews)
+  {
+    record.images.push_back(names.at(static_cast<std::size_t>(v)));
+  }
+  for (const auto* list : { &result.mirror, &result.lens })
+  {
+    for (const CalibratedNumber& n : *list)
+    {
+      record.estimated.push_back({ n.name, n.unit, n.value, n.sigma });
+    }
+  }
+  return record;
+}
+
 CalibrationResult CalibrateRigFromImages(const CameraModel& initial, const MarkerBoard& board,
   const std::vector<CalibrationImage>& images, const CalibrationOptions& options,
   std::vector<CalibrationView>* viewsOut)
